@@ -1,0 +1,51 @@
+// Compile-time capacities, grouped in named board profiles. sizeof(Mapper<Profile>) is the
+// RAM bill of a profile; tests/core/budget_test.cpp prints it and checks it against kRamBudgetBytes.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace dpcr {
+
+// Cells per tile side. 32x32 int16 = 2 KiB: small enough that unobserved space costs little,
+// large enough that the per-tile index and bookkeeping stay under 7 % of the cells.
+constexpr int kTileSide = 32;
+constexpr int kTileCells = kTileSide * kTileSide;
+
+// A robot vacuum in a home of 200 m² or more, on a Cortex-A7/A53 SoC or a Cortex-M7 with 2 MiB for mapping.
+struct VacuumProfile {
+  static constexpr const char* kName = "vacuum";
+  static constexpr std::size_t kRamBudgetBytes = 2u * 1024u * 1024u;
+  // LD06/LD19 give ~450 points per revolution; more is decimated, never truncated.
+  static constexpr int kMaxBeams = 512;
+  // Shared by every regional map: 600 tiles = 1.2 MiB of cells, 240 m² of observed floor at 5 cm
+  // if regional maps did not overlap (they do, by the margin).
+  static constexpr int kTilePoolTiles = 600;
+  // Regions of 4 m over a 200 m² home: ~13 needed, with room for re-mapping and odd layouts.
+  static constexpr int kMaxRegions = 48;
+  // A regional map's index box in tiles per side (8 x 32 cells x 5 cm = 12.8 m: S = 4 m plus a 4.4 m margin).
+  static constexpr int kRegionBoxTiles = 8;
+  // Scans kept in the submap ring (the paper's N = 20 is the default, this the most).
+  static constexpr int kSubmapMaxScans = 20;
+  // Robot-centred submap: 256 x 256 cells = 12.8 m at 5 cm.
+  static constexpr int kSubmapSideCells = 256;
+  // Line features per grid (submap or regional map) and back-end graph size.
+  static constexpr int kMaxLines = 512;
+  static constexpr int kMaxGraphEdges = 256;
+};
+
+// A small profile for tests: full pools are easy to reach.
+struct TinyProfile {
+  static constexpr const char* kName = "tiny";
+  static constexpr std::size_t kRamBudgetBytes = 256u * 1024u;
+  static constexpr int kMaxBeams = 256;
+  static constexpr int kTilePoolTiles = 48;
+  static constexpr int kMaxRegions = 4;
+  static constexpr int kRegionBoxTiles = 8;
+  static constexpr int kSubmapMaxScans = 10;
+  static constexpr int kSubmapSideCells = 128;
+  static constexpr int kMaxLines = 128;
+  static constexpr int kMaxGraphEdges = 16;
+};
+
+}  // namespace dpcr

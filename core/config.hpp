@@ -1,0 +1,46 @@
+// Run-time parameters of the mapper, with the paper's defaults (Cao et al. 2025, §3-4), in one struct.
+// Validate() runs once at start-up; nothing below re-checks them.
+#pragma once
+
+#include <cstdint>
+
+#include "core/status.hpp"
+
+namespace dpcr {
+
+struct GridConfig {
+  float resolution_m = 0.05f;  // w_g: the paper's grid width
+  // Log-odds in Q10 (1024 = 1 nat). Hit 0.7 -> +0.847 nat, miss 0.4 -> -0.405 nat.
+  std::int16_t hit_delta = 867;
+  std::int16_t miss_delta = -415;
+  // Clamp at +-3.5 nat (p = 0.97 / 0.03) so that moved furniture can be unlearnt.
+  std::int16_t clamp_max = 3584;
+  std::int16_t clamp_min = -3584;
+};
+
+struct LidarConfig {
+  float min_range_m = 0.02f;
+  float max_range_m = 12.0f;  // R: LD06/LD19 range
+  // Beams with no return clear free space up to this distance (0 = they clear nothing).
+  float no_return_free_m = 0.0f;
+};
+
+struct FrontEndConfig {
+  int submap_scans = 20;          // N: scans fused into the submap
+  int submap_line_period = 10;    // K1: re-extract submap lines every K1 scans
+  int region_line_period = 50;    // K2: re-extract regional-map lines every K2 scans
+  int second_registration_period = 5;  // Ks: submap -> regional map every Ks scans
+  float region_width_m = 4.0f;    // S
+  float region_hysteresis_m = 0.3f;  // distance past a border before switching region
+};
+
+struct MapperConfig {
+  GridConfig grid;
+  LidarConfig lidar;
+  FrontEndConfig front_end;
+};
+
+// kInvalidArgument when a parameter is out of its meaningful range (e.g. K2 <= 0, clamp_min >= 0).
+Status Validate(const MapperConfig& config);
+
+}  // namespace dpcr

@@ -1,0 +1,57 @@
+#include "core/ray_caster.hpp"
+
+#include "core/assert.hpp"
+
+namespace dpcr {
+namespace {
+
+void Count(Status s, InsertionStats* stats, int* applied) {
+  if (s == Status::kOk) {
+    ++*applied;
+  } else if (s == Status::kOutOfBounds) {
+    ++stats->out_of_box;
+  } else if (s == Status::kPoolFull) {
+    ++stats->dropped_pool_full;
+  }
+}
+
+}  // namespace
+
+InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hits,
+                          Span<const Point2> free_ends, const GridConfig& config,
+                          std::uint32_t stamp, Span<CellIndex> scratch) {
+  DPCR_ASSERT(stamp != 0 && scratch.size() >= hits.size());
+  InsertionStats stats;
+  const float res = config.resolution_m;
+  const CellIndex start = CellOf(origin.x, origin.y, res);
+
+  // 1. Reserve every distinct hit cell, so no ray of this scan can clear it.
+  std::size_t reserved = 0;
+  for (const Point2& p : hits) {
+    const CellIndex c = CellOf(p.x, p.y, res);
+    if (grid.Reserve(c, stamp)) {
+      scratch[reserved++] = c;
+    } else if (!grid.box().Contains(c)) {
+      ++stats.out_of_box;
+    } else if (grid.Get(c) == kUnknownCell) {
+      // In the box but no tile could be allocated for it (Reserve failed on the pool).
+      ++stats.dropped_pool_full;
+    }
+  }
+  // 2. Misses along every ray, each cell once.
+  auto miss = [&](CellIndex c) {
+    Count(grid.Update(c, config.miss_delta, config.clamp_min, config.clamp_max, stamp), &stats,
+          &stats.miss_cells);
+    return true;
+  };
+  for (const Point2& p : hits) TraceCells(start, CellOf(p.x, p.y, res), miss);
+  for (const Point2& p : free_ends) TraceCells(start, CellOf(p.x, p.y, res), miss);
+  // 3. The reserved hits (stamp 0: already marked for this scan).
+  for (std::size_t i = 0; i < reserved; ++i) {
+    Count(grid.Update(scratch[i], config.hit_delta, config.clamp_min, config.clamp_max, 0), &stats,
+          &stats.hit_cells);
+  }
+  return stats;
+}
+
+}  // namespace dpcr

@@ -1,0 +1,102 @@
+#include "core/tiled_grid.hpp"
+
+#include "core/assert.hpp"
+
+namespace dpcr {
+namespace {
+
+// Floor division for negative cell coordinates (tile of cell -1 is tile -1, not 0).
+std::int32_t FloorDiv(std::int32_t a, std::int32_t b) {
+  const std::int32_t q = a / b;
+  return (a % b != 0 && (a < 0) != (b < 0)) ? q - 1 : q;
+}
+
+}  // namespace
+
+TiledGrid::TiledGrid(TilePool* pool, Span<TileId> index, int tiles_x, int tiles_y)
+    : pool_(pool), index_(index), tiles_x_(tiles_x), tiles_y_(tiles_y) {
+  DPCR_ASSERT(pool != nullptr && tiles_x > 0 && tiles_y > 0);
+  DPCR_ASSERT(index.size() == static_cast<std::size_t>(tiles_x * tiles_y));
+  for (TileId& id : index_) id = kNoTile;
+}
+
+void TiledGrid::Reset(CellIndex origin_tile) {
+  for (TileId& id : index_) {
+    if (id != kNoTile) pool_->Free(id);
+    id = kNoTile;
+  }
+  allocated_tiles_ = 0;
+  origin_tile_ = origin_tile;
+}
+
+CellBox TiledGrid::box() const {
+  return CellBox{CellIndex{origin_tile_.x * kTileSide, origin_tile_.y * kTileSide},
+                 CellIndex{(origin_tile_.x + tiles_x_) * kTileSide, (origin_tile_.y + tiles_y_) * kTileSide}};
+}
+
+int TiledGrid::SlotOf(CellIndex c, int* offset) const {
+  const std::int32_t tx = FloorDiv(c.x, kTileSide) - origin_tile_.x;
+  const std::int32_t ty = FloorDiv(c.y, kTileSide) - origin_tile_.y;
+  if (tx < 0 || ty < 0 || tx >= tiles_x_ || ty >= tiles_y_) return -1;
+  const std::int32_t lx = c.x - (tx + origin_tile_.x) * kTileSide;
+  const std::int32_t ly = c.y - (ty + origin_tile_.y) * kTileSide;
+  *offset = ly * kTileSide + lx;
+  return ty * tiles_x_ + tx;
+}
+
+std::int16_t TiledGrid::Get(CellIndex c) const {
+  int offset = 0;
+  const int slot = SlotOf(c, &offset);
+  if (slot < 0) return kUnknownCell;
+  const TileId id = index_[static_cast<std::size_t>(slot)];
+  return id == kNoTile ? kUnknownCell : (*pool_)[id].cells[offset];
+}
+
+Tile* TiledGrid::TileForWrite(int slot) {
+  TileId& id = index_[static_cast<std::size_t>(slot)];
+  if (id == kNoTile) {
+    id = pool_->Allocate();
+    if (id == kNoTile) return nullptr;
+    ++allocated_tiles_;
+  }
+  return &(*pool_)[id];
+}
+
+bool TiledGrid::Reserve(CellIndex c, std::uint32_t stamp) {
+  int offset = 0;
+  const int slot = SlotOf(c, &offset);
+  if (slot < 0) return false;
+  Tile* tile = TileForWrite(slot);
+  if (tile == nullptr) return false;
+  if (tile->stamp != stamp) {
+    for (std::uint32_t& word : tile->updated) word = 0;
+    tile->stamp = stamp;
+  }
+  std::uint32_t& word = tile->updated[offset >> 5];
+  const std::uint32_t bit = 1u << (offset & 31);
+  if ((word & bit) != 0) return false;
+  word |= bit;
+  return true;
+}
+
+Status TiledGrid::Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::int16_t hi,
+                         std::uint32_t stamp) {
+  int offset = 0;
+  const int slot = SlotOf(c, &offset);
+  if (slot < 0) return Status::kOutOfBounds;
+  if (stamp != 0 && !Reserve(c, stamp)) {
+    // Either already updated in this scan (a legal repeat) or no tile could be had.
+    return index_[static_cast<std::size_t>(slot)] == kNoTile ? Status::kPoolFull : Status::kOk;
+  }
+  Tile* tile = TileForWrite(slot);
+  if (tile == nullptr) return Status::kPoolFull;
+  std::int16_t& cell = tile->cells[offset];
+  const int base = cell == kUnknownCell ? 0 : cell;
+  int v = base + delta;
+  if (v < lo) v = lo;
+  if (v > hi) v = hi;
+  cell = static_cast<std::int16_t>(v);
+  return Status::kOk;
+}
+
+}  // namespace dpcr

@@ -1,0 +1,83 @@
+// An occupancy grid over a bounded box of tiles, each tile drawn from a shared TilePool on
+// first write, so unobserved space costs two bytes of index per tile and nothing else.
+// The box bounds the index, not the memory. Size-erased: TiledGridStorage<W, H> owns the index.
+#pragma once
+
+#include <cstdint>
+
+#include "core/cell.hpp"
+#include "core/span.hpp"
+#include "core/status.hpp"
+#include "core/tile_pool.hpp"
+
+namespace dpcr {
+
+// A half-open box of cells [min, max).
+struct CellBox {
+  CellIndex min;
+  CellIndex max;
+  bool Contains(CellIndex c) const { return c.x >= min.x && c.y >= min.y && c.x < max.x && c.y < max.y; }
+  std::int32_t width() const { return max.x - min.x; }
+  std::int32_t height() const { return max.y - min.y; }
+};
+
+class TiledGrid {
+ public:
+  TiledGrid(TilePool* pool, Span<TileId> index, int tiles_x, int tiles_y);
+  TiledGrid(const TiledGrid&) = delete;
+  TiledGrid& operator=(const TiledGrid&) = delete;
+  ~TiledGrid() { Reset(); }
+
+  // Places the box so that its lower-left tile starts at `origin_tile` (in tile units)
+  // and releases every tile held so far.
+  void Reset(CellIndex origin_tile = CellIndex{0, 0});
+
+  CellBox box() const;
+  float resolution_m() const { return resolution_m_; }
+  void set_resolution_m(float r) { resolution_m_ = r; }
+
+  // kUnknownCell outside the box or in a tile never written.
+  std::int16_t Get(CellIndex c) const;
+
+  // Adds `delta` clamped to [lo, hi] if the cell was not yet updated in scan `stamp`
+  // (stamp 0 = no once-per-scan rule). kOutOfBounds outside the box, kPoolFull when the tile
+  // cannot be allocated (the update is dropped), kOk otherwise (also when skipped as a repeat).
+  Status Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::int16_t hi, std::uint32_t stamp);
+
+  // Marks a cell as updated in scan `stamp` without changing it; false if it already was
+  // (or cannot be: out of box, pool full). Used to reserve hit cells before misses are cast.
+  bool Reserve(CellIndex c, std::uint32_t stamp);
+
+  int tiles_x() const { return tiles_x_; }
+  int tiles_y() const { return tiles_y_; }
+  CellIndex origin_tile() const { return origin_tile_; }
+  // The tile at box slot (tx, ty), or kNoTile.
+  TileId tile_at(int tx, int ty) const { return index_[static_cast<std::size_t>(ty * tiles_x_ + tx)]; }
+  std::size_t allocated_tiles() const { return allocated_tiles_; }
+  const TilePool& pool() const { return *pool_; }
+
+ private:
+  // The tile slot of a cell, -1 outside the box; `offset` gets the cell's place in its tile.
+  int SlotOf(CellIndex c, int* offset) const;
+  Tile* TileForWrite(int slot);
+
+  TilePool* pool_;
+  Span<TileId> index_;
+  int tiles_x_;
+  int tiles_y_;
+  CellIndex origin_tile_;
+  float resolution_m_ = 0.05f;
+  std::size_t allocated_tiles_ = 0;
+};
+
+template <int kTilesX, int kTilesY>
+class TiledGridStorage : public TiledGrid {
+ public:
+  explicit TiledGridStorage(TilePool* pool)
+      : TiledGrid(pool, Span<TileId>(index_storage_, kTilesX * kTilesY), kTilesX, kTilesY) {}
+
+ private:
+  TileId index_storage_[kTilesX * kTilesY];
+};
+
+}  // namespace dpcr

@@ -1,0 +1,26 @@
+#include <catch2/catch.hpp>
+
+#include "core/config.hpp"
+
+TEST_CASE("Default configuration carries the paper's parameters and validates") {
+  const dpcr::MapperConfig config;
+  REQUIRE(dpcr::Validate(config) == dpcr::Status::kOk);
+  REQUIRE(config.front_end.submap_scans == 20);
+  REQUIRE(config.front_end.submap_line_period == 10);
+  REQUIRE(config.front_end.region_line_period == 50);
+  REQUIRE(config.front_end.second_registration_period == 5);
+  REQUIRE(config.front_end.region_width_m == 4.0f);
+  REQUIRE(config.grid.resolution_m == 0.05f);
+}
+
+TEST_CASE("Validate rejects meaningless parameters") {
+  dpcr::MapperConfig bad;
+  bad.front_end.region_line_period = 0;
+  REQUIRE(dpcr::Validate(bad) == dpcr::Status::kInvalidArgument);
+  bad = dpcr::MapperConfig{};
+  bad.grid.miss_delta = 10;
+  REQUIRE(dpcr::Validate(bad) == dpcr::Status::kInvalidArgument);
+  bad = dpcr::MapperConfig{};
+  bad.lidar.max_range_m = 0.0f;
+  REQUIRE(dpcr::Validate(bad) == dpcr::Status::kInvalidArgument);
+}

@@ -1,0 +1,73 @@
+// Scan insertion: misses along rays, hits at endpoints, one update per cell per scan.
+#include <catch2/catch.hpp>
+
+#include <memory>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "core/ray_caster.hpp"
+
+using dpcr::CellIndex;
+using dpcr::Point2;
+
+namespace {
+struct Fixture {
+  std::unique_ptr<dpcr::TilePoolStorage<16>> pool = std::make_unique<dpcr::TilePoolStorage<16>>();
+  std::unique_ptr<dpcr::TiledGridStorage<4, 4>> grid = std::make_unique<dpcr::TiledGridStorage<4, 4>>(pool.get());
+  dpcr::GridConfig config;
+  CellIndex scratch[64];
+  Fixture() { grid->Reset(CellIndex{-2, -2}); }
+  dpcr::InsertionStats Insert(Point2 origin, const std::vector<Point2>& hits, std::uint32_t stamp,
+                              const std::vector<Point2>& free_ends = {}) {
+    return dpcr::InsertRays(*grid, origin, dpcr::Span<const Point2>(hits.data(), hits.size()),
+                            dpcr::Span<const Point2>(free_ends.data(), free_ends.size()), config, stamp,
+                            dpcr::Span<CellIndex>(scratch, 64));
+  }
+};
+}  // namespace
+
+TEST_CASE("TraceCells visits a straight, gap-free line excluding the end") {
+  std::vector<std::pair<int, int>> cells;
+  dpcr::TraceCells(CellIndex{0, 0}, CellIndex{5, 2}, [&](CellIndex c) {
+    cells.emplace_back(c.x, c.y);
+    return true;
+  });
+  REQUIRE(cells.size() == 5);
+  REQUIRE(cells.front() == std::make_pair(0, 0));
+  for (std::size_t i = 1; i < cells.size(); ++i) {
+    REQUIRE(std::abs(cells[i].first - cells[i - 1].first) <= 1);
+    REQUIRE(std::abs(cells[i].second - cells[i - 1].second) <= 1);
+  }
+}
+
+TEST_CASE("One beam marks free cells up to the wall and the wall cell occupied") {
+  Fixture f;
+  const auto stats = f.Insert(Point2{0.025f, 0.025f}, {Point2{1.025f, 0.025f}}, 1);
+  REQUIRE(stats.hit_cells == 1);
+  REQUIRE(stats.miss_cells == 20);
+  REQUIRE(f.grid->Get(CellIndex{20, 0}) == f.config.hit_delta);
+  for (int x = 0; x < 20; ++x) REQUIRE(f.grid->Get(CellIndex{x, 0}) == f.config.miss_delta);
+  REQUIRE(f.grid->Get(CellIndex{21, 0}) == dpcr::kUnknownCell);
+}
+
+TEST_CASE("Crossing rays update a shared cell once, and a hit wins over a miss") {
+  Fixture f;
+  // Two beams ending in the same cell, and a third ray passing through that cell.
+  f.Insert(Point2{0.025f, 0.025f},
+           {Point2{0.51f, 0.02f}, Point2{0.52f, 0.03f}, Point2{1.025f, 0.025f}}, 1);
+  REQUIRE(f.grid->Get(CellIndex{10, 0}) == f.config.hit_delta);  // hit once, not twice, no miss
+  REQUIRE(f.grid->Get(CellIndex{5, 0}) == f.config.miss_delta);  // crossed by three rays, one miss
+  // The next scan may update the same cells again.
+  f.Insert(Point2{0.025f, 0.025f}, {Point2{1.025f, 0.025f}}, 2);
+  REQUIRE(f.grid->Get(CellIndex{10, 0}) == f.config.hit_delta + f.config.miss_delta);
+  REQUIRE(f.grid->Get(CellIndex{5, 0}) == 2 * f.config.miss_delta);
+}
+
+TEST_CASE("Beams without a return clear space but mark no wall; far points are counted, not lost silently") {
+  Fixture f;
+  const auto stats = f.Insert(Point2{0.025f, 0.025f}, {Point2{10.0f, 0.0f}}, 1, {Point2{0.025f, 0.5f}});
+  REQUIRE(stats.out_of_box > 0);
+  REQUIRE(f.grid->Get(CellIndex{0, 10}) == dpcr::kUnknownCell);  // the free end itself is not updated
+  REQUIRE(f.grid->Get(CellIndex{0, 9}) == f.config.miss_delta);
+}

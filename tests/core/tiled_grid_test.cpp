@@ -1,0 +1,63 @@
+// Tiled grid: lazy tiles, bounds, clamping, once-per-scan rule, pool exhaustion.
+#include <catch2/catch.hpp>
+
+#include <memory>
+
+#include "core/tiled_grid.hpp"
+
+using dpcr::CellIndex;
+using dpcr::Status;
+
+TEST_CASE("CellOf floors negative coordinates") {
+  REQUIRE(dpcr::CellOf(0.01f, 0.01f, 0.05f) == CellIndex{0, 0});
+  REQUIRE(dpcr::CellOf(-0.01f, 0.07f, 0.05f) == CellIndex{-1, 1});
+  REQUIRE(dpcr::CellCentreX(CellIndex{-1, 0}, 0.05f) == Approx(-0.025f));
+}
+
+TEST_CASE("Tiles are allocated on first write only, and released on reset") {
+  auto pool = std::make_unique<dpcr::TilePoolStorage<8>>();
+  dpcr::TiledGridStorage<4, 4> grid(pool.get());
+  grid.Reset(CellIndex{-2, -2});
+  REQUIRE(grid.box().min == CellIndex{-64, -64});
+  REQUIRE(grid.box().max == CellIndex{64, 64});
+  REQUIRE(grid.Get(CellIndex{0, 0}) == dpcr::kUnknownCell);
+  REQUIRE(pool->used() == 0);
+
+  REQUIRE(grid.Update(CellIndex{-1, -1}, 100, -500, 500, 0) == Status::kOk);
+  REQUIRE(grid.Get(CellIndex{-1, -1}) == 100);
+  REQUIRE(grid.Get(CellIndex{-2, -1}) == dpcr::kUnknownCell);  // same tile, never written
+  REQUIRE(pool->used() == 1);
+  REQUIRE(grid.Update(CellIndex{0, 0}, 100, -500, 500, 0) == Status::kOk);  // next tile
+  REQUIRE(pool->used() == 2);
+
+  REQUIRE(grid.Update(CellIndex{64, 0}, 100, -500, 500, 0) == Status::kOutOfBounds);
+  REQUIRE(grid.Get(CellIndex{64, 0}) == dpcr::kUnknownCell);
+
+  grid.Reset(CellIndex{0, 0});
+  REQUIRE(pool->used() == 0);
+  REQUIRE(grid.Get(CellIndex{0, 0}) == dpcr::kUnknownCell);
+}
+
+TEST_CASE("Updates clamp and happen at most once per cell per scan") {
+  auto pool = std::make_unique<dpcr::TilePoolStorage<2>>();
+  dpcr::TiledGridStorage<2, 2> grid(pool.get());
+  const CellIndex c{3, 5};
+  for (int i = 0; i < 10; ++i) REQUIRE(grid.Update(c, 300, -1000, 1000, 0) == Status::kOk);
+  REQUIRE(grid.Get(c) == 1000);
+  for (int i = 0; i < 3; ++i) REQUIRE(grid.Update(c, -400, -1000, 1000, 7) == Status::kOk);
+  REQUIRE(grid.Get(c) == 600);  // only the first update of scan 7 counted
+  REQUIRE(grid.Update(c, -400, -1000, 1000, 8) == Status::kOk);
+  REQUIRE(grid.Get(c) == 200);
+  REQUIRE_FALSE(grid.Reserve(c, 8));
+  REQUIRE(grid.Reserve(c, 9));
+}
+
+TEST_CASE("A full tile pool drops the update and says so") {
+  auto pool = std::make_unique<dpcr::TilePoolStorage<1>>();
+  dpcr::TiledGridStorage<2, 2> grid(pool.get());
+  REQUIRE(grid.Update(CellIndex{0, 0}, 10, -100, 100, 0) == Status::kOk);
+  REQUIRE(grid.Update(CellIndex{40, 0}, 10, -100, 100, 0) == Status::kPoolFull);
+  REQUIRE(grid.Get(CellIndex{40, 0}) == dpcr::kUnknownCell);
+  REQUIRE(pool->failed_allocations() == 1);
+  REQUIRE(grid.Update(CellIndex{1, 1}, 10, -100, 100, 0) == Status::kOk);  // existing tile still works
+}
