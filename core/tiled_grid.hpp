@@ -23,7 +23,9 @@ struct CellBox {
 
 class TiledGrid {
  public:
+  // `pool` may be attached later (arrays of grids are built before their pool is known).
   TiledGrid(TilePool* pool, Span<TileId> index, int tiles_x, int tiles_y);
+  void Attach(TilePool* pool) { pool_ = pool; }
   TiledGrid(const TiledGrid&) = delete;
   TiledGrid& operator=(const TiledGrid&) = delete;
   ~TiledGrid() { Reset(); }
@@ -73,7 +75,7 @@ class TiledGrid {
 template <int kTilesX, int kTilesY>
 class TiledGridStorage : public TiledGrid {
  public:
-  explicit TiledGridStorage(TilePool* pool)
+  explicit TiledGridStorage(TilePool* pool = nullptr)
       : TiledGrid(pool, Span<TileId>(index_storage_, kTilesX * kTilesY), kTilesX, kTilesY) {}
 
  private:
