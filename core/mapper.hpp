@@ -57,11 +57,8 @@ class Mapper {
   void AddOdometry(const OdometrySample& sample) {
     const std::uint32_t before = odometry_.steps_back();
     odometry_.Add(sample);
-    if (odometry_.steps_back() != before) {
-      // The odometry frame restarted: the next scan re-anchors its increment.
-      ++counters_.odometry_steps_back;
-      last_odom_valid_ = false;
-    }
+    // A stamp stepping back breaks interpolation, not the odometry frame: increments go on.
+    if (odometry_.steps_back() != before) ++counters_.odometry_steps_back;
     ++counters_.odometry_samples;
   }
 

@@ -52,6 +52,12 @@ std::int16_t TiledGrid::Get(CellIndex c) const {
   return id == kNoTile ? kUnknownCell : (*pool_)[id].cells[offset];
 }
 
+bool TiledGrid::HasTile(CellIndex c) const {
+  int offset = 0;
+  const int slot = SlotOf(c, &offset);
+  return slot >= 0 && index_[static_cast<std::size_t>(slot)] != kNoTile;
+}
+
 Tile* TiledGrid::TileForWrite(int slot) {
   DPCR_ASSERT(pool_ != nullptr);
   TileId& id = index_[static_cast<std::size_t>(slot)];

@@ -46,6 +46,9 @@ class TiledGrid {
   // cannot be allocated (the update is dropped), kOk otherwise (also when skipped as a repeat).
   Status Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::int16_t hi, std::uint32_t stamp);
 
+  // True when the cell's tile has been allocated (the cell may still be unknown).
+  bool HasTile(CellIndex c) const;
+
   // Marks a cell as updated in scan `stamp` without changing it; false if it already was
   // (or cannot be: out of box, pool full). Used to reserve hit cells before misses are cast.
   bool Reserve(CellIndex c, std::uint32_t stamp);
