@@ -7,31 +7,44 @@
 namespace dpcr {
 namespace {
 
-// Residual histogram for the trimming percentiles in O(points): bins in sqrt(r / gate) so that
-// small residuals (near convergence) get fine bins.
-constexpr int kBins = 128;
+// Residual histogram for the trimming percentiles in O(points). Linear bins of gate/256 (2 mm at
+// the default gate) are fine enough: the threshold never goes below trim_floor_m (3 cm).
+constexpr int kBins = 256;
 
 struct Histogram {
   std::uint16_t count[kBins] = {};
   int total = 0;
-  void Add(float r, float gate) {
-    int b = static_cast<int>(std::sqrt(r / gate) * kBins);
-    b = b < 0 ? 0 : (b >= kBins ? kBins - 1 : b);
+  void Add(float r, float inv_bin) {
+    int b = static_cast<int>(r * inv_bin);
+    b = b >= kBins ? kBins - 1 : b;
     ++count[b];
     ++total;
   }
-  float Percentile(float q, float gate) const {
+  float Percentile(float q, float bin_m) const {
     const int want = static_cast<int>(q * static_cast<float>(total));
     int seen = 0;
     for (int b = 0; b < kBins; ++b) {
       seen += count[b];
-      if (seen > want) {
-        const float u = static_cast<float>(b + 1) / kBins;
-        return u * u * gate;
-      }
+      if (seen > want) return static_cast<float>(b + 1) * bin_m;
     }
-    return gate;
+    return static_cast<float>(kBins) * bin_m;
   }
+};
+
+// Upper triangle of Σ w JᵀJ and Σ w Jᵀr, accumulated in scalars (no 3x3 outer products).
+struct NormalEquations {
+  float h00 = 0, h01 = 0, h02 = 0, h11 = 0, h12 = 0, h22 = 0, g0 = 0, g1 = 0, g2 = 0;
+  void Add(float w, float j0, float j1, float j2, float r) {
+    h00 += w * j0 * j0, h01 += w * j0 * j1, h02 += w * j0 * j2;
+    h11 += w * j1 * j1, h12 += w * j1 * j2, h22 += w * j2 * j2;
+    g0 += w * j0 * r, g1 += w * j1 * r, g2 += w * j2 * r;
+  }
+  Eigen::Matrix3f H() const {
+    Eigen::Matrix3f h;
+    h << h00, h01, h02, h01, h11, h12, h02, h12, h22;
+    return h;
+  }
+  Eigen::Vector3f g() const { return Eigen::Vector3f(g0, g1, g2); }
 };
 
 float Residual(const Correspondence& c, Point2 w) {
@@ -53,35 +66,36 @@ RegistrationResult RunPlicp(const RegistrationReference& ref, Span<const Point2>
   for (int iter = 0; iter < config.max_iterations; ++iter) {
     const float c = std::cos(pose.theta), s = std::sin(pose.theta);
     const auto to_world = [&](Point2 p) { return Point2{c * p.x - s * p.y + pose.x, s * p.x + c * p.y + pose.y}; };
-    // Pass 1: correspondences and their residual distribution (for the adaptive trim).
-    Histogram hist;
-    std::uint32_t hash = 0;
-    for (std::size_t i = 0; i < target.size(); ++i) {
-      Correspondence corr;
-      const Point2 w = to_world(target[i]);
-      if (!find(ref, w, config, &corr)) continue;
-      const float r = Residual(corr, w);
-      if (r > config.gate_m) continue;
-      hist.Add(r, config.gate_m);
-      hash = hash * 31u + corr.ref + 1u;
-    }
-    float threshold = config.gate_m;
+    // Pass 1 (fine phase only): the residual distribution, for Censi's adaptive trim.
     // Trim only in the fine phase: while the pose still moves by centimetres, the residuals of a
     // correctly matched wall can all lie above 2 p70 (an offset along one axis shows only on the
     // walls across it), and trimming them would remove exactly the information needed.
-    if (config.trim && fine_phase && hist.total > 0) {
-      threshold = std::fmin(hist.Percentile(0.95f, config.gate_m), 2.0f * hist.Percentile(0.70f, config.gate_m));
-      threshold = std::fmax(threshold, config.trim_floor_m);
+    float threshold = config.gate_m;
+    if (config.trim && fine_phase) {
+      Histogram hist;
+      const float bin_m = config.gate_m / kBins, inv_bin = 1.0f / bin_m;
+      for (std::size_t i = 0; i < target.size(); ++i) {
+        Correspondence corr;
+        const Point2 w = to_world(target[i]);
+        if (!find(ref, w, config, &corr)) continue;
+        const float r = Residual(corr, w);
+        if (r <= config.gate_m) hist.Add(r, inv_bin);
+      }
+      if (hist.total > 0) {
+        threshold = std::fmin(hist.Percentile(0.95f, bin_m), 2.0f * hist.Percentile(0.70f, bin_m));
+        threshold = std::fmax(threshold, config.trim_floor_m);
+      }
     }
     // Pass 2: the normal equations of the point-to-line (or point-to-point) residuals.
-    Eigen::Matrix3f h = Eigen::Matrix3f::Zero();
-    Eigen::Vector3f g = Eigen::Vector3f::Zero();
+    NormalEquations ne;
+    std::uint32_t hash = 0;
     inliers = 0;
     residual_sum = 0.0f;
     for (std::size_t i = 0; i < target.size(); ++i) {
       Correspondence corr;
       const Point2 w = to_world(target[i]);
       if (!find(ref, w, config, &corr)) continue;
+      hash = hash * 31u + corr.ref + 1u;
       const float r_abs = Residual(corr, w);
       if (r_abs > threshold || r_abs > config.gate_m) continue;
       const float huber = r_abs <= config.huber_m ? 1.0f : config.huber_m / r_abs;
@@ -90,15 +104,15 @@ RegistrationResult RunPlicp(const RegistrationReference& ref, Span<const Point2>
       ++inliers;
       residual_sum += r_abs;
       if (corr.point_to_point) {
-        const Eigen::Vector3f jx(1.0f, 0.0f, -ry), jy(0.0f, 1.0f, rx);
-        h += weight * (jx * jx.transpose() + jy * jy.transpose());
-        g += weight * (jx * (w.x - corr.q.x) + jy * (w.y - corr.q.y));
+        ne.Add(weight, 1.0f, 0.0f, -ry, w.x - corr.q.x);
+        ne.Add(weight, 0.0f, 1.0f, rx, w.y - corr.q.y);
       } else {
-        const Eigen::Vector3f j(corr.normal.x, corr.normal.y, -corr.normal.x * ry + corr.normal.y * rx);
-        h += weight * (j * j.transpose());
-        g += weight * j * (corr.normal.x * w.x + corr.normal.y * w.y - corr.offset);
+        ne.Add(weight, corr.normal.x, corr.normal.y, -corr.normal.x * ry + corr.normal.y * rx,
+               corr.normal.x * w.x + corr.normal.y * w.y - corr.offset);
       }
     }
+    Eigen::Matrix3f h = ne.H();
+    Eigen::Vector3f g = ne.g();
     result.iterations = iter + 1;
     h_points = h;
     if (inliers < 3) break;
