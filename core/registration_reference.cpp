@@ -1,0 +1,132 @@
+#include "core/registration_reference.hpp"
+
+#include "core/assert.hpp"
+
+namespace dpcr {
+namespace {
+
+std::int32_t Dist2(const ObstacleCell& c, int x, int y) {
+  const std::int32_t dx = c.x - x, dy = c.y - y;
+  return dx * dx + dy * dy;
+}
+
+}  // namespace
+
+RegistrationReference::RegistrationReference(Span<ObstacleCell> cells, Span<std::uint16_t> nearest,
+                                             Span<std::uint16_t> scratch, Span<LineFeature> lines, int max_w,
+                                             int max_h)
+    : cells_(cells), nearest_(nearest), scratch_(scratch), lines_(lines), max_w_(max_w), max_h_(max_h) {
+  DPCR_ASSERT(nearest.size() == static_cast<std::size_t>(max_w * max_h) && scratch.size() >= cells.size());
+  DPCR_ASSERT(cells.size() < kNoCell);
+}
+
+std::uint16_t RegistrationReference::ObstacleAt(int x, int y) const {
+  if (x < 0 || y < 0 || x >= w_ || y >= h_) return kNoCell;
+  const std::uint16_t k = nearest_[static_cast<std::size_t>(y * w_ + x)];
+  return (k != kNoCell && cells_[k].x == x && cells_[k].y == y) ? k : kNoCell;
+}
+
+Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const ReferenceConfig& config,
+                                    ReferenceBuildStats* stats) {
+  ReferenceBuildStats st;
+  w_ = window.width() < max_w_ ? window.width() : max_w_;
+  h_ = window.height() < max_h_ ? window.height() : max_h_;
+  w_ = w_ > 0 ? w_ : 0;
+  h_ = h_ > 0 ? h_ : 0;
+  res_ = grid.resolution_m();
+  inv_res_ = 1.0f / res_;
+  origin_ = Point2{static_cast<float>(window.min.x) * res_, static_cast<float>(window.min.y) * res_};
+  cell_count_ = line_count_ = 0;
+  const std::size_t n_table = static_cast<std::size_t>(w_ * h_);
+  for (std::size_t i = 0; i < n_table; ++i) nearest_[i] = kNoCell;
+
+  // 1. Obstacle cells, tile by tile: only allocated tiles cost anything.
+  const CellBox box = grid.box();
+  for (int ty = 0; ty < grid.tiles_y(); ++ty) {
+    for (int tx = 0; tx < grid.tiles_x(); ++tx) {
+      const TileId id = grid.tile_at(tx, ty);
+      if (id == kNoTile) continue;
+      const std::int16_t* values = grid.pool()[id].cells;
+      const int x0 = box.min.x + tx * kTileSide - window.min.x, y0 = box.min.y + ty * kTileSide - window.min.y;
+      if (x0 >= w_ || y0 >= h_ || x0 + kTileSide <= 0 || y0 + kTileSide <= 0) continue;
+      for (int ly = 0; ly < kTileSide; ++ly) {
+        const int y = y0 + ly;
+        if (y < 0 || y >= h_) continue;
+        for (int lx = 0; lx < kTileSide; ++lx) {
+          const int x = x0 + lx;
+          const std::int16_t v = values[ly * kTileSide + lx];
+          if (x < 0 || x >= w_ || v == kUnknownCell || v <= config.obstacle_threshold) continue;
+          if (cell_count_ == cells_.size()) {
+            ++st.dropped_cells;
+            continue;
+          }
+          ObstacleCell& c = cells_[cell_count_];
+          c = ObstacleCell{};
+          c.x = static_cast<std::int16_t>(x);
+          c.y = static_cast<std::int16_t>(y);
+          nearest_[static_cast<std::size_t>(y * w_ + x)] = static_cast<std::uint16_t>(cell_count_++);
+        }
+      }
+    }
+  }
+  st.obstacle_cells = static_cast<int>(cell_count_);
+
+  // 2. Local normals and line features, while the table still marks obstacle cells only.
+  const Span<ObstacleCell> used(cells_.data(), cell_count_);
+  ComputeLocalNormals(used, nearest_.data(), w_, h_);
+  const int n_lines = ExtractLines(used, nearest_.data(), w_, h_, scratch_, lines_, config.lines, &st.extraction);
+  line_count_ = static_cast<std::size_t>(n_lines);
+  st.lines = n_lines;
+  for (std::size_t i = 0; i < line_count_; ++i) {  // cell units -> world metres
+    LineFeature& l = lines_[i];
+    const auto to_world = [&](Point2 p) { return Point2{origin_.x + p.x * res_, origin_.y + p.y * res_}; };
+    l.a = to_world(l.a);
+    l.b = to_world(l.b);
+    l.mean = to_world(l.mean);
+    l.offset = l.normal.x * l.mean.x + l.normal.y * l.mean.y;
+    l.rms *= res_;
+    l.cxx *= res_ * res_;
+    l.cxy *= res_ * res_;
+    l.cyy *= res_ * res_;
+  }
+
+  // 3. Nearest obstacle cell per window cell: two raster passes propagating seed ids (vector
+  // distance transform, 8SSEDT-like; exact up to rare one-cell ties), then cut at the bound.
+  const auto relax = [&](int x, int y, int nx, int ny) {
+    if (nx < 0 || ny < 0 || nx >= w_ || ny >= h_) return;
+    const std::uint16_t cand = nearest_[static_cast<std::size_t>(ny * w_ + nx)];
+    if (cand == kNoCell) return;
+    std::uint16_t& cur = nearest_[static_cast<std::size_t>(y * w_ + x)];
+    if (cur == kNoCell || Dist2(cells_[cand], x, y) < Dist2(cells_[cur], x, y)) cur = cand;
+  };
+  for (int y = 0; y < h_; ++y) {
+    for (int x = 0; x < w_; ++x) {
+      relax(x, y, x - 1, y);
+      relax(x, y, x - 1, y - 1);
+      relax(x, y, x, y - 1);
+      relax(x, y, x + 1, y - 1);
+    }
+    for (int x = w_ - 1; x >= 0; --x) relax(x, y, x + 1, y);
+  }
+  for (int y = h_ - 1; y >= 0; --y) {
+    for (int x = w_ - 1; x >= 0; --x) {
+      relax(x, y, x + 1, y);
+      relax(x, y, x + 1, y + 1);
+      relax(x, y, x, y + 1);
+      relax(x, y, x - 1, y + 1);
+    }
+    for (int x = 0; x < w_; ++x) relax(x, y, x - 1, y);
+  }
+  const float bound_cells = config.max_distance_m * inv_res_;
+  const std::int32_t bound2 = static_cast<std::int32_t>(bound_cells * bound_cells);
+  for (int y = 0; y < h_; ++y) {
+    for (int x = 0; x < w_; ++x) {
+      std::uint16_t& k = nearest_[static_cast<std::size_t>(y * w_ + x)];
+      if (k != kNoCell && Dist2(cells_[k], x, y) > bound2) k = kNoCell;
+    }
+  }
+  if (stats != nullptr) *stats = st;
+  return st.dropped_cells > 0 ? Status::kCapacityExceeded : Status::kOk;
+}
+
+}  // namespace dpcr

@@ -1,0 +1,93 @@
+// The reference side of a registration, built once per line re-extraction (every K1 scans for the
+// submap, K2 for a regional map, paper §3.3–3.4) so that each correspondence costs O(1):
+// obstacle cells of a window of a grid, their line features, a local normal per cell, and a
+// nearest-obstacle-cell table over the window (a bounded vector distance transform).
+// Size-erased: RegistrationReferenceStorage<W, H, Cells, Lines> owns the arrays.
+#pragma once
+
+#include <cstdint>
+
+#include "core/line_extractor.hpp"
+#include "core/span.hpp"
+#include "core/status.hpp"
+#include "core/tiled_grid.hpp"
+
+namespace dpcr {
+
+struct ReferenceConfig {
+  // A cell is an obstacle above this log-odds (Q10). 0 = more likely occupied than free; one hit
+  // (+867) passes, a hit followed by two misses (-830) does not.
+  std::int16_t obstacle_threshold = 0;
+  // Beyond this distance a window cell has no nearest obstacle (the correspondence gate's bound).
+  float max_distance_m = 1.0f;
+  LineExtractorConfig lines;
+};
+
+struct ReferenceBuildStats {
+  int obstacle_cells = 0;
+  int dropped_cells = 0;  // obstacle cells beyond capacity (not in the reference)
+  int lines = 0;
+  LineExtractionStats extraction;
+};
+
+class RegistrationReference {
+ public:
+  RegistrationReference(Span<ObstacleCell> cells, Span<std::uint16_t> nearest, Span<std::uint16_t> scratch,
+                        Span<LineFeature> lines, int max_w, int max_h);
+  RegistrationReference(const RegistrationReference&) = delete;
+  RegistrationReference& operator=(const RegistrationReference&) = delete;
+
+  // Rebuilds from `grid` over `window` (clipped to max_w x max_h cells from window.min).
+  // kCapacityExceeded when obstacle cells were dropped (the reference is still usable).
+  Status Build(const TiledGrid& grid, CellBox window, const ReferenceConfig& config, ReferenceBuildStats* stats);
+
+  // Index of the obstacle cell nearest to world point p, kNoCell outside the window or bound.
+  std::uint16_t Nearest(Point2 p) const {
+    const float fx = (p.x - origin_.x) * inv_res_, fy = (p.y - origin_.y) * inv_res_;
+    if (!(fx >= 0.0f && fy >= 0.0f && fx < static_cast<float>(w_) && fy < static_cast<float>(h_))) return kNoCell;
+    return nearest_[static_cast<std::size_t>(static_cast<int>(fy) * w_ + static_cast<int>(fx))];
+  }
+  // The obstacle cell occupying window-local (x, y), or kNoCell.
+  std::uint16_t ObstacleAt(int x, int y) const;
+
+  // World position of an obstacle cell's centre.
+  Point2 CellCentre(std::uint16_t i) const {
+    return Point2{origin_.x + (cells_[i].x + 0.5f) * res_, origin_.y + (cells_[i].y + 0.5f) * res_};
+  }
+  const ObstacleCell& cell(std::uint16_t i) const { return cells_[i]; }
+  std::size_t cell_count() const { return cell_count_; }
+  // Lines in world metres (normal·p = offset, a/b endpoints, rms in metres).
+  const LineFeature& line(std::uint16_t i) const { return lines_[i]; }
+  std::size_t line_count() const { return line_count_; }
+  float resolution_m() const { return res_; }
+
+ private:
+  Span<ObstacleCell> cells_;
+  Span<std::uint16_t> nearest_;
+  Span<std::uint16_t> scratch_;
+  Span<LineFeature> lines_;
+  int max_w_, max_h_;
+  int w_ = 0, h_ = 0;
+  std::size_t cell_count_ = 0, line_count_ = 0;
+  Point2 origin_;  // world position of the window's lower-left corner
+  float res_ = 0.05f, inv_res_ = 20.0f;
+};
+
+// 256 x 256 window, 4096 cells, 512 lines: 128 KiB table + 40 KiB cells/scratch + 28 KiB lines.
+template <int kW, int kH, int kCells, int kLines>
+class RegistrationReferenceStorage : public RegistrationReference {
+  static_assert(kCells < kNoCell, "cell ids are 16-bit");
+
+ public:
+  RegistrationReferenceStorage()
+      : RegistrationReference(Span<ObstacleCell>(cells_, kCells), Span<std::uint16_t>(nearest_, kW * kH),
+                              Span<std::uint16_t>(scratch_, kCells), Span<LineFeature>(lines_, kLines), kW, kH) {}
+
+ private:
+  ObstacleCell cells_[kCells];
+  std::uint16_t nearest_[kW * kH];
+  std::uint16_t scratch_[kCells];
+  LineFeature lines_[kLines];
+};
+
+}  // namespace dpcr

@@ -1,0 +1,129 @@
+// Line features from synthetic int16 grids: rooms, noisy walls, gaps, corners, short furniture.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "registration_fixtures.hpp"
+
+using dpcr::Point2;
+using dpcr_test::GridFixture;
+using dpcr_test::Segment;
+
+namespace {
+
+float Dist(Point2 a, Point2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+// The extracted line matching a true segment with both endpoints within `tol` metres, or -1.
+int FindLine(const dpcr::RegistrationReference& ref, Segment s, float tol) {
+  for (std::uint16_t i = 0; i < ref.line_count(); ++i) {
+    const dpcr::LineFeature& l = ref.line(i);
+    if ((Dist(l.a, s.a) <= tol && Dist(l.b, s.b) <= tol) || (Dist(l.a, s.b) <= tol && Dist(l.b, s.a) <= tol)) {
+      return i;
+    }
+  }
+  for (std::uint16_t i = 0; i < ref.line_count(); ++i) {
+    const dpcr::LineFeature& l = ref.line(i);
+    UNSCOPED_INFO("line " << i << ": (" << l.a.x << ", " << l.a.y << ") - (" << l.b.x << ", " << l.b.y
+                          << ") support " << l.support << " rms " << l.rms);
+  }
+  return -1;
+}
+
+constexpr float kCell = 0.05f;
+// Endpoint accuracy target: one cell. Walls are drawn through cell centres' lattice at arbitrary
+// offsets, so this is the quantisation of the grid plus the fit.
+constexpr float kTol = kCell + 1e-4f;
+
+}  // namespace
+
+TEST_CASE("A rectangular room yields its four walls with endpoints within one cell") {
+  GridFixture f;
+  const Point2 c0{1.02f, 1.03f}, c1{5.01f, 1.03f}, c2{5.01f, 4.02f}, c3{1.02f, 4.02f};
+  const Segment walls[] = {{c0, c1}, {c1, c2}, {c2, c3}, {c3, c0}};
+  for (const Segment& w : walls) f.Draw(w);
+  dpcr::ReferenceBuildStats stats;
+  REQUIRE(f.Build(&stats) == dpcr::Status::kOk);
+  CHECK(f.ref->line_count() == 4);
+  for (const Segment& w : walls) CHECK(FindLine(*f.ref, w, kTol) >= 0);
+  // Every obstacle cell of a clean room belongs to a line, and its line passes within a cell.
+  for (std::uint16_t i = 0; i < f.ref->cell_count(); ++i) {
+    const std::uint16_t id = f.ref->cell(i).line;
+    REQUIRE(id != dpcr::kNoLine);
+    const dpcr::LineFeature& l = f.ref->line(id);
+    const Point2 p = f.ref->CellCentre(i);
+    CHECK(std::fabs(l.normal.x * p.x + l.normal.y * p.y - l.offset) <= kCell);
+  }
+}
+
+TEST_CASE("Noisy walls are still single lines with a small fit residual") {
+  GridFixture f;
+  const Segment wall{{0.5f, 2.0f}, {6.5f, 2.6f}};  // slanted, 6 m
+  f.Draw(wall, 0.015f, 7);
+  REQUIRE(f.Build() == dpcr::Status::kOk);
+  const int id = FindLine(*f.ref, wall, kTol);
+  REQUIRE(id >= 0);
+  CHECK(f.ref->line(static_cast<std::uint16_t>(id)).rms < 0.03f);
+  CHECK(f.ref->line_count() <= 2);
+}
+
+TEST_CASE("A wall with a door gap gives two lines, an L corner gives two lines meeting at the corner") {
+  GridFixture f;
+  // Coordinates off the cell lattice: a point exactly on a cell border falls in the upper cell.
+  f.Draw(Segment{{1.01f, 1.01f}, {7.01f, 1.01f}}, 0.0f, 1, 2.0f, 2.9f);  // door from x = 3.01 to 3.91
+  f.Draw(Segment{{1.01f, 5.01f}, {6.01f, 5.01f}});
+  f.Draw(Segment{{6.01f, 5.01f}, {6.01f, 9.01f}});
+  REQUIRE(f.Build() == dpcr::Status::kOk);
+  CHECK(FindLine(*f.ref, Segment{{1.01f, 1.01f}, {3.01f, 1.01f}}, kTol) >= 0);
+  CHECK(FindLine(*f.ref, Segment{{3.91f, 1.01f}, {7.01f, 1.01f}}, kTol) >= 0);
+  CHECK(FindLine(*f.ref, Segment{{1.01f, 5.01f}, {6.01f, 5.01f}}, kTol) >= 0);
+  CHECK(FindLine(*f.ref, Segment{{6.01f, 5.01f}, {6.01f, 9.01f}}, kTol) >= 0);
+  CHECK(f.ref->line_count() == 4);
+}
+
+TEST_CASE("Short furniture edges become lines, chair legs stay clutter with no line") {
+  GridFixture f;
+  const Segment table_edge{{2.0f, 2.0f}, {2.6f, 2.0f}};  // 12 cells
+  f.Draw(table_edge);
+  f.Mark(Point2{4.01f, 4.01f});  // chair legs: single cells
+  f.Mark(Point2{4.41f, 4.01f});
+  f.Mark(Point2{4.01f, 4.41f});
+  REQUIRE(f.Build() == dpcr::Status::kOk);
+  CHECK(FindLine(*f.ref, table_edge, kTol) >= 0);
+  CHECK(f.ref->line_count() == 1);
+  const std::uint16_t leg = f.ref->ObstacleAt(80, 80);
+  REQUIRE(leg != dpcr::kNoCell);
+  CHECK(f.ref->cell(leg).line == dpcr::kNoLine);
+}
+
+TEST_CASE("The nearest-obstacle table answers the true nearest cell within its bound") {
+  GridFixture f;
+  f.Draw(Segment{{1.0f, 1.0f}, {5.0f, 1.0f}});
+  f.Mark(Point2{3.02f, 3.02f});
+  dpcr::ReferenceConfig config;
+  config.max_distance_m = 1.0f;
+  REQUIRE(f.Build(nullptr, config) == dpcr::Status::kOk);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.0f, 6.0f);
+  for (int k = 0; k < 2000; ++k) {
+    const Point2 p{u(rng), u(rng)};
+    const Point2 centre{(std::floor(p.x / kCell) + 0.5f) * kCell, (std::floor(p.y / kCell) + 0.5f) * kCell};
+    float best = 1e9f;
+    for (std::uint16_t i = 0; i < f.ref->cell_count(); ++i) best = std::fmin(best, Dist(centre, f.ref->CellCentre(i)));
+    const std::uint16_t got = f.ref->Nearest(p);
+    if (best > 1.0f + kCell) {
+      CHECK(got == dpcr::kNoCell);
+    } else if (best < 1.0f - kCell) {
+      REQUIRE(got != dpcr::kNoCell);
+      CHECK(Dist(centre, f.ref->CellCentre(got)) <= best + 1e-4f);
+    }
+  }
+}
+
+TEST_CASE("More obstacle cells than capacity are reported, not silently lost") {
+  GridFixture f;
+  for (int y = 0; y < 80; ++y) f.Draw(Segment{{0.1f, 0.025f + 0.05f * static_cast<float>(y)}, {3.9f, 0.025f + 0.05f * static_cast<float>(y)}});
+  dpcr::ReferenceBuildStats stats;
+  CHECK(f.Build(&stats) == dpcr::Status::kCapacityExceeded);
+  CHECK(stats.dropped_cells > 0);
+  CHECK(f.ref->cell_count() == 4096);
+}

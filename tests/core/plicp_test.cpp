@@ -1,0 +1,152 @@
+// Improved and classic PLICP: exact recovery, outliers, degenerate corridors, real submaps.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+#include <Eigen/LU>
+
+#include "core/classic_plicp.hpp"
+#include "core/plicp.hpp"
+#include "registration_fixtures.hpp"
+
+using dpcr::Point2;
+using dpcr::Pose2;
+using dpcr_test::GridFixture;
+using dpcr_test::Segment;
+
+namespace {
+
+// Cell-centre coordinates (k * 5 cm + 2.5 cm): walls drawn there give exact line features.
+float C(int k) { return 0.05f * static_cast<float>(k) + 0.025f; }
+
+std::vector<Segment> LRoom() {
+  const Point2 p0{C(20), C(20)}, p1{C(180), C(20)}, p2{C(180), C(100)}, p3{C(110), C(100)}, p4{C(110), C(180)},
+      p5{C(20), C(180)};
+  std::vector<Segment> w = {{p0, p1}, {p1, p2}, {p2, p3}, {p3, p4}, {p4, p5}, {p5, p0}};
+  // A cupboard: a box inside the room.
+  const Point2 b0{C(60), C(60)}, b1{C(80), C(60)}, b2{C(80), C(72)}, b3{C(60), C(72)};
+  w.insert(w.end(), {{b0, b1}, {b1, b2}, {b2, b3}, {b3, b0}});
+  return w;
+}
+
+dpcr::Span<const Point2> SpanOf(const std::vector<Point2>& v) { return dpcr::Span<const Point2>(v.data(), v.size()); }
+
+float PosErr(Pose2 a, Pose2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
+float AngErr(Pose2 a, Pose2 b) { return std::fabs(dpcr::NormalizeAngle(a.theta - b.theta)); }
+
+constexpr float kDeg = dpcr::kPi / 180.0f;
+
+}  // namespace
+
+TEST_CASE("Improved PLICP recovers a known transform exactly on noiseless data") {
+  GridFixture f;
+  const auto walls = LRoom();
+  for (const Segment& w : walls) f.Draw(w);
+  REQUIRE(f.Build() == dpcr::Status::kOk);
+  const Pose2 truth{4.0f, 3.0f, 0.3f};
+  const auto scan = dpcr_test::SimulateScan(walls, truth, 450, 0.0f, 1);
+  const Pose2 start{truth.x + 0.15f, truth.y - 0.1f, truth.theta + 4.0f * kDeg};
+  const auto r = dpcr::RegisterImproved(*f.ref, SpanOf(scan), start, nullptr, dpcr::PlicpConfig{});
+  CHECK(r.verdict == dpcr::Status::kOk);
+  CHECK(PosErr(r.pose, truth) < 0.002f);
+  CHECK(AngErr(r.pose, truth) < 0.05f * kDeg);
+  CHECK(r.mean_residual_m < 0.002f);
+  CHECK(r.inlier_ratio > 0.9f);
+  CHECK_FALSE(r.degenerate);
+  CHECK(r.hessian.determinant() > 0.0f);
+}
+
+TEST_CASE("Both methods register a noisy scan against a ray-cast submap to 2 cm and 0.5 deg") {
+  GridFixture f;
+  const auto walls = LRoom();
+  for (int k = 0; k < 10; ++k) {
+    const Pose2 p{3.0f + 0.1f * static_cast<float>(k), 2.5f + 0.05f * static_cast<float>(k), 0.05f * static_cast<float>(k)};
+    dpcr_test::InsertScan(f, dpcr_test::SimulateScan(walls, p, 450, 0.02f, 10u + static_cast<unsigned>(k)), p,
+                          static_cast<std::uint32_t>(k + 1));
+  }
+  REQUIRE(f.Build() == dpcr::Status::kOk);
+  const Pose2 truth{4.1f, 3.0f, 0.55f};
+  const auto scan = dpcr_test::SimulateScan(walls, truth, 450, 0.02f, 99);
+  const Pose2 start{truth.x - 0.1f, truth.y + 0.08f, truth.theta - 3.0f * kDeg};
+  const auto improved = dpcr::RegisterImproved(*f.ref, SpanOf(scan), start, nullptr, dpcr::PlicpConfig{});
+  const auto classic = dpcr::RegisterClassic(*f.ref, SpanOf(scan), start, nullptr, dpcr::PlicpConfig{});
+  INFO("improved " << improved.pose.x << " " << improved.pose.y << " " << improved.pose.theta << " it "
+                   << improved.iterations << "; classic " << classic.pose.x << " " << classic.pose.y << " "
+                   << classic.pose.theta << " it " << classic.iterations);
+  CHECK(improved.verdict == dpcr::Status::kOk);
+  CHECK(PosErr(improved.pose, truth) < 0.02f);
+  CHECK(AngErr(improved.pose, truth) < 0.5f * kDeg);
+  CHECK(PosErr(classic.pose, truth) < 0.02f);
+  CHECK(AngErr(classic.pose, truth) < 0.5f * kDeg);
+}
+
+TEST_CASE("Improved PLICP survives 30 percent outliers (people, chair legs)") {
+  GridFixture f;
+  const auto walls = LRoom();
+  for (const Segment& w : walls) f.Draw(w);
+  REQUIRE(f.Build() == dpcr::Status::kOk);
+  const Pose2 truth{4.0f, 3.0f, -0.4f};
+  auto scan = dpcr_test::SimulateScan(walls, truth, 450, 0.01f, 5);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> range(0.3f, 3.0f), angle(-dpcr::kPi, dpcr::kPi);
+  for (std::size_t i = 0; i < scan.size(); i += 1) {
+    if (i % 10 < 3) {  // 30 % of the beams hit something that is not in the map
+      const float a = angle(rng), r = range(rng);
+      scan[i] = Point2{r * std::cos(a), r * std::sin(a)};
+    }
+  }
+  const Pose2 start{truth.x + 0.1f, truth.y + 0.1f, truth.theta + 3.0f * kDeg};
+  const auto r = dpcr::RegisterImproved(*f.ref, SpanOf(scan), start, nullptr, dpcr::PlicpConfig{});
+  INFO("pose " << r.pose.x << " " << r.pose.y << " " << r.pose.theta << " inliers " << r.inlier_ratio);
+  CHECK(PosErr(r.pose, truth) < 0.02f);
+  CHECK(AngErr(r.pose, truth) < 0.5f * kDeg);
+  CHECK(r.verdict == dpcr::Status::kOk);
+}
+
+TEST_CASE("A featureless corridor is flagged degenerate, and the odometry prior stops the slide") {
+  GridFixture f;
+  const std::vector<Segment> walls = {{{C(2), C(40)}, {C(250), C(40)}}, {{C(2), C(76)}, {C(250), C(76)}}};
+  for (const Segment& w : walls) f.Draw(w);
+  REQUIRE(f.Build() == dpcr::Status::kOk);
+  const Pose2 truth{6.0f, 2.9f, 0.1f};
+  const auto scan = dpcr_test::SimulateScan(walls, truth, 450, 0.01f, 3, 4.0f);
+  const Pose2 start{truth.x + 0.2f, truth.y + 0.05f, truth.theta + 2.0f * kDeg};
+
+  const auto free_run = dpcr::RegisterImproved(*f.ref, SpanOf(scan), start, nullptr, dpcr::PlicpConfig{});
+  CHECK(free_run.degenerate);
+  CHECK(free_run.verdict == dpcr::Status::kRejected);
+
+  // Odometry says we are at `start` (0.2 m off along the corridor, which no scan can tell).
+  dpcr::PosePrior prior{start, 50.0f, 50.0f};
+  const auto with_prior = dpcr::RegisterImproved(*f.ref, SpanOf(scan), start, &prior, dpcr::PlicpConfig{});
+  CHECK(with_prior.degenerate);
+  CHECK(with_prior.verdict == dpcr::Status::kOk);
+  CHECK(std::fabs(with_prior.pose.x - start.x) < 0.01f);        // no slide along the corridor
+  CHECK(std::fabs(with_prior.pose.y - truth.y) < 0.01f);        // across it: corrected
+  CHECK(AngErr(with_prior.pose, truth) < 0.5f * kDeg);
+}
+
+TEST_CASE("Registration against an empty reference reports not enough data") {
+  GridFixture f;
+  REQUIRE(f.Build() == dpcr::Status::kOk);
+  const std::vector<Point2> scan(100, Point2{1.0f, 0.0f});
+  const auto r = dpcr::RegisterImproved(*f.ref, SpanOf(scan), Pose2{3.0f, 3.0f, 0.0f}, nullptr, dpcr::PlicpConfig{});
+  CHECK(r.verdict == dpcr::Status::kNotEnoughData);
+  CHECK(r.pose.x == 3.0f);
+}
+
+TEST_CASE("A correction beyond what odometry makes plausible is rejected") {
+  GridFixture f;
+  const auto walls = LRoom();
+  for (const Segment& w : walls) f.Draw(w);
+  REQUIRE(f.Build() == dpcr::Status::kOk);
+  const Pose2 truth{4.0f, 3.0f, 0.3f};
+  const auto scan = dpcr_test::SimulateScan(walls, truth, 450, 0.0f, 1);
+  dpcr::PlicpConfig config;
+  config.max_correction_m = 0.05f;
+  const auto r = dpcr::RegisterImproved(*f.ref, SpanOf(scan), Pose2{4.15f, 3.0f, 0.3f}, nullptr, config);
+  INFO("pose " << r.pose.x << " " << r.pose.y << " " << r.pose.theta << " it " << r.iterations << " in " << r.inliers);
+  CHECK(PosErr(r.pose, truth) < 0.01f);
+  CHECK(r.verdict == dpcr::Status::kRejected);
+}

@@ -1,0 +1,261 @@
+#include "tools/bench/registration_bench.hpp"
+
+#include <valgrind/callgrind.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <vector>
+
+#include "core/classic_plicp.hpp"
+#include "core/plicp.hpp"
+#include "core/ray_caster.hpp"
+#include "core/registration_reference.hpp"
+#include "tools/bench/sim_worlds.hpp"
+
+namespace dpcr_bench {
+namespace {
+
+using dpcr::Point2;
+using dpcr::Pose2;
+using Reference = dpcr::RegistrationReferenceStorage<256, 256, 4096, 512>;
+
+constexpr float kDeg = dpcr::kPi / 180.0f;
+constexpr float kSuccessM = 0.02f;
+constexpr float kSuccessRad = 0.5f * kDeg;
+
+enum class Method { kImproved, kClassic };
+const char* Name(Method m) { return m == Method::kImproved ? "improved" : "classic"; }
+
+dpcr::RegistrationResult Register(Method m, const dpcr::RegistrationReference& ref, const std::vector<Point2>& target,
+                                  Pose2 initial) {
+  const dpcr::Span<const Point2> span(target.data(), target.size());
+  const dpcr::PlicpConfig config;
+  return m == Method::kImproved ? dpcr::RegisterImproved(ref, span, initial, nullptr, config)
+                                : dpcr::RegisterClassic(ref, span, initial, nullptr, config);
+}
+
+// A submap-like grid (256 x 256 cells at 5 cm, centred on `centre`) filled by ray casting.
+struct Submap {
+  std::unique_ptr<dpcr::TilePoolStorage<64>> pool = std::make_unique<dpcr::TilePoolStorage<64>>();
+  std::unique_ptr<dpcr::TiledGridStorage<8, 8>> grid = std::make_unique<dpcr::TiledGridStorage<8, 8>>(pool.get());
+  std::uint32_t stamp = 0;
+  explicit Submap(Point2 centre) {
+    const auto tile = [](float v) { return static_cast<std::int32_t>(std::floor(v / (0.05f * dpcr::kTileSide))) - 4; };
+    grid->Reset(dpcr::CellIndex{tile(centre.x), tile(centre.y)});
+  }
+  void Insert(const std::vector<Point2>& scan, Pose2 pose) {
+    std::vector<Point2> world;
+    for (const Point2& p : scan) world.push_back(pose.Apply(p));
+    std::vector<dpcr::CellIndex> scratch(world.size() + 1);
+    (void)dpcr::InsertRays(*grid, Point2{pose.x, pose.y}, dpcr::Span<const Point2>(world.data(), world.size()),
+                           dpcr::Span<const Point2>(), dpcr::GridConfig{}, ++stamp,
+                           dpcr::Span<dpcr::CellIndex>(scratch.data(), scratch.size()));
+  }
+};
+
+struct Run {
+  bool success;
+  int bin;  // 0 small (<= 0.2 m and <= 8 deg), 2 large (> 0.35 m or > 14 deg), 1 otherwise
+  int iterations;
+  bool accepted;
+  double micros;
+};
+
+struct Perturbation {
+  float dx, dy, dth;
+  int bin;
+};
+
+std::vector<Perturbation> Perturbations(int n, std::mt19937* rng) {
+  std::uniform_real_distribution<float> trans(0.05f, 0.5f), dir(-dpcr::kPi, dpcr::kPi), rot(2.0f * kDeg, 20.0f * kDeg);
+  std::vector<Perturbation> out;
+  for (int i = 0; i < n; ++i) {
+    const float t = trans(*rng), d = dir(*rng);
+    const float r = rot(*rng) * ((*rng)() % 2 == 0 ? 1.0f : -1.0f);
+    const int bin = (t <= 0.2f && std::fabs(r) <= 8.0f * kDeg) ? 0 : ((t > 0.35f || std::fabs(r) > 14.0f * kDeg) ? 2 : 1);
+    out.push_back({t * std::cos(d), t * std::sin(d), r, bin});
+  }
+  return out;
+}
+
+using Table = std::map<std::pair<std::string, std::string>, std::vector<Run>>;
+
+void RunCase(const std::string& dataset, const dpcr::RegistrationReference& ref, const std::vector<Point2>& target,
+             const Pose2 truth[2], const std::vector<Perturbation>& perturbations, Table* table) {
+  for (Method m : {Method::kImproved, Method::kClassic}) {
+    const Pose2 t = truth[m == Method::kImproved ? 0 : 1];
+    for (const Perturbation& p : perturbations) {
+      const Pose2 init{t.x + p.dx, t.y + p.dy, dpcr::NormalizeAngle(t.theta + p.dth)};
+      const auto start = std::chrono::steady_clock::now();
+      const auto r = Register(m, ref, target, init);
+      const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+      const bool ok = std::hypot(r.pose.x - t.x, r.pose.y - t.y) < kSuccessM &&
+                      std::fabs(dpcr::NormalizeAngle(r.pose.theta - t.theta)) < kSuccessRad;
+      (*table)[{dataset, Name(m)}].push_back({ok, p.bin, r.iterations, r.verdict == dpcr::Status::kOk, us});
+    }
+  }
+}
+
+struct SimCase {
+  std::string world;
+  std::unique_ptr<Reference> ref;
+  std::vector<Point2> target;
+  Pose2 truth;
+};
+
+// Scan k of a world's path against the submap of scans k-10 .. k-1 at their true poses.
+SimCase MakeSimCase(const World& w, std::size_t k, unsigned seed) {
+  SimCase c{w.name, std::make_unique<Reference>(), {}, w.path[k]};
+  Submap submap(Point2{c.truth.x, c.truth.y});
+  for (std::size_t j = k - 10; j < k; ++j) {
+    submap.Insert(SimulateScan(w, w.path[j], 450, 0.02f, seed * 1000u + static_cast<unsigned>(j), 8.0f), w.path[j]);
+  }
+  (void)c.ref->Build(*submap.grid, submap.grid->box(), dpcr::ReferenceConfig{}, nullptr);
+  c.target = SimulateScan(w, c.truth, 450, 0.02f, seed * 7919u + static_cast<unsigned>(k), 8.0f);
+  return c;
+}
+
+std::vector<std::size_t> SimIndices(const World& w, int n) {
+  std::vector<std::size_t> out;
+  for (int i = 0; i < n; ++i) out.push_back(10 + (w.path.size() - 11) * static_cast<std::size_t>(i) / static_cast<std::size_t>(n - 1));
+  return out;
+}
+
+struct ClfScan {
+  std::vector<Point2> points;  // sensor frame
+  Pose2 odom;
+};
+
+std::vector<ClfScan> ReadClf(const std::string& path) {
+  std::vector<ClfScan> scans;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("FLASER ", 0) != 0) continue;
+    std::istringstream ss(line.substr(7));
+    int n = 0;
+    ss >> n;
+    ClfScan s;
+    for (int i = 0; i < n; ++i) {
+      float r = 0.0f;
+      ss >> r;
+      const float a = -0.5f * dpcr::kPi + static_cast<float>(i) * kDeg;  // -90 deg, 1 deg steps
+      if (r > 0.05f && r < 20.0f) s.points.push_back(Point2{r * std::cos(a), r * std::sin(a)});
+    }
+    float x, y, th;
+    ss >> x >> y >> th;
+    s.odom = Pose2{x, y, th};
+    if (ss) scans.push_back(s);
+  }
+  return scans;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+void PrintTable(const Table& table) {
+  std::printf("| dataset | method | runs | success | small | medium | large | median it. (succ.) | mean it. (succ.) | accepted | false accepts | median µs |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const auto& [key, runs] : table) {
+    int succ = 0, acc = 0, false_acc = 0, bin_n[3] = {}, bin_s[3] = {};
+    std::vector<double> its, us;
+    for (const Run& r : runs) {
+      succ += r.success;
+      acc += r.accepted;
+      false_acc += r.accepted && !r.success;
+      ++bin_n[r.bin];
+      bin_s[r.bin] += r.success;
+      if (r.success) its.push_back(r.iterations);
+      us.push_back(r.micros);
+    }
+    double mean_it = 0.0;
+    for (double i : its) mean_it += i / static_cast<double>(its.size());
+    const auto pct = [](int a, int b) { return b > 0 ? 100.0 * a / b : 0.0; };
+    std::printf("| %s | %s | %zu | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.0f | %.1f | %.1f %% | %.1f %% | %.0f |\n",
+                key.first.c_str(), key.second.c_str(), runs.size(), pct(succ, static_cast<int>(runs.size())),
+                pct(bin_s[0], bin_n[0]), pct(bin_s[1], bin_n[1]), pct(bin_s[2], bin_n[2]), Median(its), mean_it,
+                pct(acc, static_cast<int>(runs.size())), pct(false_acc, static_cast<int>(runs.size())), Median(us));
+  }
+}
+
+int RunCallgrind(const RegistrationBenchOptions& o) {
+  const Method m = o.method == "classic" ? Method::kClassic : Method::kImproved;
+  std::mt19937 rng(o.seed);
+  int done = 0;
+  for (const World& w : MakeWorlds()) {
+    for (std::size_t k : SimIndices(w, o.sim_poses_per_world)) {
+      const SimCase c = MakeSimCase(w, k, o.seed);
+      for (const Perturbation& p : Perturbations(o.perturbations, &rng)) {
+        if (done == o.callgrind_count) return 0;
+        const Pose2 init{c.truth.x + p.dx, c.truth.y + p.dy, dpcr::NormalizeAngle(c.truth.theta + p.dth)};
+        CALLGRIND_TOGGLE_COLLECT;
+        const auto r = Register(m, *c.ref, c.target, init);
+        CALLGRIND_TOGGLE_COLLECT;
+        CALLGRIND_DUMP_STATS;
+        std::printf("%d %s points %zu iterations %d\n", done, c.world.c_str(), c.target.size(), r.iterations);
+        ++done;
+      }
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int RunRegistrationBench(const RegistrationBenchOptions& o) {
+  if (o.callgrind_count > 0) return RunCallgrind(o);
+  Table table;
+  std::mt19937 rng(o.seed);
+  std::size_t points = 0, cases = 0;
+  for (const World& w : MakeWorlds()) {
+    for (std::size_t k : SimIndices(w, o.sim_poses_per_world)) {
+      const SimCase c = MakeSimCase(w, k, o.seed);
+      const Pose2 truth[2] = {c.truth, c.truth};
+      RunCase("sim " + w.name, *c.ref, c.target, truth, Perturbations(o.perturbations, &rng), &table);
+      points += c.target.size();
+      ++cases;
+    }
+  }
+  std::fprintf(stderr, "sim: %zu scan->submap cases, %.0f points per scan\n", cases, static_cast<double>(points) / static_cast<double>(cases));
+
+  const std::vector<ClfScan> scans = ReadClf(o.clf_path);
+  int kept = 0, tried = 0;
+  if (scans.size() > 20) {
+    const std::size_t step = (scans.size() - 20) / static_cast<std::size_t>(o.intel_pairs);
+    for (std::size_t i = 10; i < scans.size() && tried < o.intel_pairs; i += step, ++tried) {
+      // Reference: the previous scan's grid in its own frame; target: scan i; the ground truth is
+      // each method's converged result from the odometry guess, kept where both agree and accept.
+      Submap submap(Point2{0.0f, 0.0f});
+      submap.Insert(scans[i - 1].points, Pose2{});
+      auto ref = std::make_unique<Reference>();
+      (void)ref->Build(*submap.grid, submap.grid->box(), dpcr::ReferenceConfig{}, nullptr);
+      const Pose2 odom = dpcr::Between(scans[i - 1].odom, scans[i].odom);
+      const auto a = Register(Method::kImproved, *ref, scans[i].points, odom);
+      const auto b = Register(Method::kClassic, *ref, scans[i].points, odom);
+      if (a.verdict != dpcr::Status::kOk || b.verdict != dpcr::Status::kOk) continue;
+      if (std::hypot(a.pose.x - b.pose.x, a.pose.y - b.pose.y) > kSuccessM ||
+          std::fabs(dpcr::NormalizeAngle(a.pose.theta - b.pose.theta)) > kSuccessRad) {
+        continue;
+      }
+      const Pose2 truth[2] = {a.pose, b.pose};
+      RunCase("intel.clf pairs", *ref, scans[i].points, truth, Perturbations(o.perturbations, &rng), &table);
+      ++kept;
+    }
+  }
+  std::fprintf(stderr, "intel: %zu scans read, %d of %d pairs kept (both methods accept and agree unperturbed)\n",
+               scans.size(), kept, tried);
+  PrintTable(table);
+  return 0;
+}
+
+}  // namespace dpcr_bench
