@@ -31,6 +31,8 @@ struct VacuumProfile {
   static constexpr int kSubmapSideCells = 256;
   // Line features per grid (submap or regional map) and back-end graph size.
   static constexpr int kMaxLines = 512;
+  // Obstacle cells a registration reference holds (a 12.8 m window of walls and furniture).
+  static constexpr int kReferenceCells = 4096;
   static constexpr int kMaxGraphEdges = 256;
 };
 
@@ -46,20 +48,22 @@ struct BuildingProfile {
   static constexpr int kSubmapMaxScans = 20;
   static constexpr int kSubmapSideCells = 256;
   static constexpr int kMaxLines = 512;
+  static constexpr int kReferenceCells = 4096;
   static constexpr int kMaxGraphEdges = 1024;
 };
 
 // A small profile for tests: full pools are easy to reach.
 struct TinyProfile {
   static constexpr const char* kName = "tiny";
-  static constexpr std::size_t kRamBudgetBytes = 256u * 1024u;
+  static constexpr std::size_t kRamBudgetBytes = 320u * 1024u;
   static constexpr int kMaxBeams = 256;
   static constexpr int kTilePoolTiles = 48;
   static constexpr int kMaxRegions = 4;
-  static constexpr int kRegionBoxTiles = 8;
+  static constexpr int kRegionBoxTiles = 4;
   static constexpr int kSubmapMaxScans = 10;
   static constexpr int kSubmapSideCells = 128;
   static constexpr int kMaxLines = 128;
+  static constexpr int kReferenceCells = 2048;
   static constexpr int kMaxGraphEdges = 16;
 };
 

@@ -4,7 +4,9 @@
 
 #include <cstdint>
 
+#include "core/plicp.hpp"
 #include "core/pose2.hpp"
+#include "core/registration_reference.hpp"
 #include "core/status.hpp"
 
 namespace dpcr {
@@ -34,6 +36,18 @@ struct FrontEndConfig {
   int second_registration_period = 5;  // Ks: submap -> regional map every Ks scans
   float region_width_m = 4.0f;    // S
   float region_hysteresis_m = 0.3f;  // distance past a border before switching region
+  // false: the odometry pipeline (dead reckoning + insertion), for comparison.
+  bool enable_registration = true;
+  // Consecutive rejected first registrations before the status says "lost".
+  int lost_after_rejections = 10;
+  // Odometry prior of the first registration (PosePrior units: unit-weight point residuals).
+  float prior_info_xy = 20.0f;
+  float prior_info_theta = 20.0f;
+  // Second registration: at most this many submap obstacle cells as target points.
+  int second_registration_max_points = 600;
+  PlicpConfig first_registration;
+  PlicpConfig second_registration;
+  ReferenceConfig reference;
 };
 
 struct MapperConfig {

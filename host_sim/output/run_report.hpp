@@ -47,6 +47,11 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                    {"region_pool_full", c.region_pool_full},
                    {"updates_out_of_box", c.updates_out_of_box},
                    {"updates_dropped_pool_full", c.updates_dropped_pool_full}};
+  const auto& f = mapper.front_end_counters();
+  j["front_end"] = {{"first_registrations", f.first_registrations}, {"first_rejected", f.first_rejected},
+                    {"second_registrations", f.second_registrations}, {"second_rejected", f.second_rejected},
+                    {"submap_line_builds", f.submap_line_builds}, {"region_line_builds", f.region_line_builds},
+                    {"reference_cells_dropped", f.reference_cells_dropped}};
   return j;
 }
 

@@ -1,0 +1,107 @@
+// The DPCR front end (Cao et al. 2025, §3.1, §3.3-3.4, Algorithm 1), size-erased over the
+// storage that Mapper<Profile> owns:
+//   1 predict the pose from wheel odometry and de-skew the scan;
+//   2 first registration: scan -> submap (improved PLICP), lines re-extracted every K1 scans;
+//   3 every Ks scans and on entering a region: second registration, submap -> regional map,
+//     lines re-extracted every K2 scans; the correction moves the submap (and the robot with it);
+//   4 insert the scan into the submap (ring of N) and once into the current regional map.
+// Frames: the robot pose lives in the submap frame; submap_pose_ places that frame in the world;
+// each regional map's cells are in its anchor frame.
+#pragma once
+
+#include <cstdint>
+
+#include "core/config.hpp"
+#include "core/mapper_types.hpp"
+#include "core/odometry_buffer.hpp"
+#include "core/plicp.hpp"
+#include "core/region_tracker.hpp"
+#include "core/registration_reference.hpp"
+#include "core/scan.hpp"
+#include "core/scan_projection.hpp"
+#include "core/submap.hpp"
+#include "core/tiled_grid.hpp"
+
+namespace dpcr {
+
+struct RegionalMap {
+  RegionKey key;
+  Pose2 anchor;              // the map's frame in the world; the back end moves it
+  TiledGrid* grid = nullptr;  // points into the Mapper's storage
+  std::uint32_t scans_inserted = 0;
+};
+
+// Counts of what the registrations did (metrics.json "front_end").
+struct FrontEndCounters {
+  std::uint32_t first_registrations = 0;
+  std::uint32_t first_rejected = 0;
+  std::uint32_t second_registrations = 0;
+  std::uint32_t second_rejected = 0;
+  std::uint32_t submap_line_builds = 0;
+  std::uint32_t region_line_builds = 0;
+  std::uint32_t reference_cells_dropped = 0;  // obstacle cells past a reference's capacity
+};
+
+struct FrontEndStorage {
+  Submap* submap = nullptr;
+  RegistrationReference* submap_reference = nullptr;
+  RegistrationReference* region_reference = nullptr;
+  Span<RegionalMap> regions;
+  Span<Point2> hits;       // kMaxBeams each
+  Span<Point2> free_ends;
+  Span<Point2> target;     // second-registration target points (submap obstacle cells)
+  Span<CellIndex> scratch;
+};
+
+class FrontEnd {
+ public:
+  explicit FrontEnd(const FrontEndStorage& storage) : s_(storage) {}
+  FrontEnd(const FrontEnd&) = delete;
+  FrontEnd& operator=(const FrontEnd&) = delete;
+
+  Status Init(const MapperConfig& config);
+  void AddOdometry(const OdometrySample& sample);
+  Status AddScan(Span<const Beam> beams, std::int64_t stamp_us);
+
+  Pose2 pose() const { return submap_pose_ * pose_; }
+  MapperStatus status() const { return status_; }
+  const MapperCounters& counters() const { return counters_; }
+  const FrontEndCounters& front_end_counters() const { return fe_counters_; }
+  const MapperConfig& config() const { return config_; }
+  int region_count() const { return region_count_; }
+  const RegionalMap& region(int i) const { return s_.regions[static_cast<std::size_t>(i)]; }
+  bool registration_enabled() const { return config_.front_end.enable_registration; }
+
+ private:
+  Pose2 Predict(std::int64_t stamp_us);
+  void RegisterScan(std::size_t hits, const Pose2& predicted);
+  void EnterRegion(bool first);
+  void SecondRegistration();
+  void InsertIntoRegion(const ProjectedScan& projected);
+  void SeedRegionFromSubmap(RegionalMap& r);
+  void UpdateStatus();
+
+  FrontEndStorage s_;
+  MapperConfig config_;
+  MapperStatus status_ = MapperStatus::kWaitingForData;
+  MapperCounters counters_;
+  FrontEndCounters fe_counters_;
+  OdometryBuffer odometry_;
+  RegionTracker tracker_;
+  Pose2 pose_;         // robot in the submap frame
+  Pose2 submap_pose_;  // submap frame in the world
+  Pose2 last_odom_;
+  bool have_odom_ = false;
+  bool have_scan_ = false;
+  bool pool_full_ = false;
+  int consecutive_rejections_ = 0;
+  int region_count_ = 0;
+  int current_region_ = -1;
+  int reference_region_ = -1;  // whose lines region_reference holds
+  std::uint32_t scans_since_submap_lines_ = 0;
+  std::uint32_t scans_since_region_lines_ = 0;
+  std::uint32_t scans_since_second_ = 0;
+  std::uint32_t stamp_ = 0;
+};
+
+}  // namespace dpcr
