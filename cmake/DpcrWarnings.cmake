@@ -4,5 +4,5 @@ option(DPCR_WERROR "Treat warnings as errors" OFF)
 add_library(dpcr_warnings INTERFACE)
 target_compile_options(dpcr_warnings INTERFACE
   -Wall -Wextra -Wpedantic -Wconversion -Wshadow -Wnon-virtual-dtor -Wold-style-cast
-  -Wcast-align -Wdouble-promotion
+  -Wcast-align
   $<$<BOOL:${DPCR_WERROR}>:-Werror>)

@@ -34,6 +34,21 @@ struct VacuumProfile {
   static constexpr int kMaxGraphEdges = 256;
 };
 
+// The public benchmark logs (intel.clf: a 30 m x 30 m lab, ~900 m² with long corridors):
+// not a vacuum, used by dpcr-replay on CARMEN logs so that those runs are not pool-limited.
+struct BuildingProfile {
+  static constexpr const char* kName = "building";
+  static constexpr std::size_t kRamBudgetBytes = 8u * 1024u * 1024u;
+  static constexpr int kMaxBeams = 512;
+  static constexpr int kTilePoolTiles = 3200;
+  static constexpr int kMaxRegions = 160;
+  static constexpr int kRegionBoxTiles = 8;
+  static constexpr int kSubmapMaxScans = 20;
+  static constexpr int kSubmapSideCells = 256;
+  static constexpr int kMaxLines = 512;
+  static constexpr int kMaxGraphEdges = 1024;
+};
+
 // A small profile for tests: full pools are easy to reach.
 struct TinyProfile {
   static constexpr const char* kName = "tiny";

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "core/pose2.hpp"
 #include "core/status.hpp"
 
 namespace dpcr {
@@ -23,6 +24,7 @@ struct LidarConfig {
   float max_range_m = 12.0f;  // R: LD06/LD19 range
   // Beams with no return clear free space up to this distance (0 = they clear nothing).
   float no_return_free_m = 0.0f;
+  Pose2 mount;  // the lidar's pose in the robot frame
 };
 
 struct FrontEndConfig {

@@ -33,16 +33,17 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
       scratch[reserved++] = c;
     } else if (!grid.box().Contains(c)) {
       ++stats.out_of_box;
-    } else if (grid.Get(c) == kUnknownCell) {
-      // In the box but no tile could be allocated for it (Reserve failed on the pool).
+    } else if (!grid.HasTile(c)) {
+      // In the box but no tile could be had: the pool is exhausted.
       ++stats.dropped_pool_full;
     }
   }
-  // 2. Misses along every ray, each cell once.
+  // 2. Misses along every ray, each cell once. The box is convex and rays start inside it:
+  // a ray that leaves it never comes back, so tracing stops there (one out_of_box per ray).
   auto miss = [&](CellIndex c) {
-    Count(grid.Update(c, config.miss_delta, config.clamp_min, config.clamp_max, stamp), &stats,
-          &stats.miss_cells);
-    return true;
+    const Status s = grid.Update(c, config.miss_delta, config.clamp_min, config.clamp_max, stamp);
+    Count(s, &stats, &stats.miss_cells);
+    return s != Status::kOutOfBounds;
   };
   for (const Point2& p : hits) TraceCells(start, CellOf(p.x, p.y, res), miss);
   for (const Point2& p : free_ends) TraceCells(start, CellOf(p.x, p.y, res), miss);

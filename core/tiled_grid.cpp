@@ -15,14 +15,14 @@ std::int32_t FloorDiv(std::int32_t a, std::int32_t b) {
 
 TiledGrid::TiledGrid(TilePool* pool, Span<TileId> index, int tiles_x, int tiles_y)
     : pool_(pool), index_(index), tiles_x_(tiles_x), tiles_y_(tiles_y) {
-  DPCR_ASSERT(pool != nullptr && tiles_x > 0 && tiles_y > 0);
+  DPCR_ASSERT(tiles_x > 0 && tiles_y > 0);
   DPCR_ASSERT(index.size() == static_cast<std::size_t>(tiles_x * tiles_y));
   for (TileId& id : index_) id = kNoTile;
 }
 
 void TiledGrid::Reset(CellIndex origin_tile) {
   for (TileId& id : index_) {
-    if (id != kNoTile) pool_->Free(id);
+    if (id != kNoTile && pool_ != nullptr) pool_->Free(id);
     id = kNoTile;
   }
   allocated_tiles_ = 0;
@@ -52,7 +52,14 @@ std::int16_t TiledGrid::Get(CellIndex c) const {
   return id == kNoTile ? kUnknownCell : (*pool_)[id].cells[offset];
 }
 
+bool TiledGrid::HasTile(CellIndex c) const {
+  int offset = 0;
+  const int slot = SlotOf(c, &offset);
+  return slot >= 0 && index_[static_cast<std::size_t>(slot)] != kNoTile;
+}
+
 Tile* TiledGrid::TileForWrite(int slot) {
+  DPCR_ASSERT(pool_ != nullptr);
   TileId& id = index_[static_cast<std::size_t>(slot)];
   if (id == kNoTile) {
     id = pool_->Allocate();

@@ -23,7 +23,9 @@ struct CellBox {
 
 class TiledGrid {
  public:
+  // `pool` may be attached later (arrays of grids are built before their pool is known).
   TiledGrid(TilePool* pool, Span<TileId> index, int tiles_x, int tiles_y);
+  void Attach(TilePool* pool) { pool_ = pool; }
   TiledGrid(const TiledGrid&) = delete;
   TiledGrid& operator=(const TiledGrid&) = delete;
   ~TiledGrid() { Reset(); }
@@ -43,6 +45,9 @@ class TiledGrid {
   // (stamp 0 = no once-per-scan rule). kOutOfBounds outside the box, kPoolFull when the tile
   // cannot be allocated (the update is dropped), kOk otherwise (also when skipped as a repeat).
   Status Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::int16_t hi, std::uint32_t stamp);
+
+  // True when the cell's tile has been allocated (the cell may still be unknown).
+  bool HasTile(CellIndex c) const;
 
   // Marks a cell as updated in scan `stamp` without changing it; false if it already was
   // (or cannot be: out of box, pool full). Used to reserve hit cells before misses are cast.
@@ -73,7 +78,7 @@ class TiledGrid {
 template <int kTilesX, int kTilesY>
 class TiledGridStorage : public TiledGrid {
  public:
-  explicit TiledGridStorage(TilePool* pool)
+  explicit TiledGridStorage(TilePool* pool = nullptr)
       : TiledGrid(pool, Span<TileId>(index_storage_, kTilesX * kTilesY), kTilesX, kTilesY) {}
 
  private:

@@ -71,3 +71,27 @@ TEST_CASE("Beams without a return clear space but mark no wall; far points are c
   REQUIRE(f.grid->Get(CellIndex{0, 10}) == dpcr::kUnknownCell);  // the free end itself is not updated
   REQUIRE(f.grid->Get(CellIndex{0, 9}) == f.config.miss_delta);
 }
+
+TEST_CASE("Two beams hitting the same new cell are one hit, not a pool-full drop") {
+  Fixture f;
+  const auto stats = f.Insert(Point2{0.025f, 0.025f}, {Point2{1.0f, 1.0f}, Point2{1.01f, 1.01f}}, 1);
+  REQUIRE(stats.hit_cells == 1);
+  REQUIRE(stats.dropped_pool_full == 0);
+}
+
+TEST_CASE("An exhausted tile pool is reported as dropped updates") {
+  auto pool = std::make_unique<dpcr::TilePoolStorage<1>>();
+  auto grid = std::make_unique<dpcr::TiledGridStorage<4, 4>>(pool.get());
+  grid->Reset(CellIndex{-2, -2});
+  dpcr::GridConfig config;
+  CellIndex scratch[4];
+  const std::vector<Point2> hits{Point2{2.5f, 0.025f}};  // two tiles away from the origin's tile
+  const auto stats = dpcr::InsertRays(*grid, Point2{0.025f, 0.025f}, dpcr::Span<const Point2>(hits.data(), 1),
+                                      dpcr::Span<const Point2>(), config, 1, dpcr::Span<CellIndex>(scratch, 4));
+  // The hit's tile is taken first; the misses in the origin's tile find the pool empty.
+  REQUIRE(stats.hit_cells == 1);
+  REQUIRE(stats.dropped_pool_full == 32);
+  REQUIRE(stats.miss_cells == 18);
+  REQUIRE(pool->used() == 1);
+  REQUIRE(pool->failed_allocations() > 0);
+}

@@ -1,0 +1,82 @@
+// The Mapper's contract: configuration checks, regions, scans fused once, full pools reported.
+#include <catch2/catch.hpp>
+
+#include <memory>
+
+#include "core/mapper.hpp"
+#include "tests/budget/synthetic_run.hpp"
+
+namespace {
+template <class Profile>
+std::unique_ptr<dpcr::Mapper<Profile>> MakeMapper() {
+  auto m = std::make_unique<dpcr::Mapper<Profile>>();
+  dpcr::MapperConfig config;
+  config.front_end.submap_scans = Profile::kSubmapMaxScans;
+  REQUIRE(m->Init(config) == dpcr::Status::kOk);
+  return m;
+}
+template <class M, class Run>
+void Feed(M& mapper, const Run& run) {
+  std::size_t odom = 0;
+  for (const auto& scan : run.scans) {
+    while (odom < run.odometry.size() && run.odometry[odom].stamp_us <= scan.stamp_us) mapper.AddOdometry(run.odometry[odom++]);
+    (void)mapper.AddScan(scan);
+  }
+}
+}  // namespace
+
+TEST_CASE("Init rejects a configuration the profile cannot hold") {
+  auto m = std::make_unique<dpcr::Mapper<dpcr::TinyProfile>>();
+  dpcr::MapperConfig config;
+  config.front_end.submap_scans = dpcr::TinyProfile::kSubmapMaxScans + 1;
+  REQUIRE(m->Init(config) == dpcr::Status::kInvalidArgument);
+}
+
+TEST_CASE("A scan without usable beams is rejected and counted") {
+  auto m = MakeMapper<dpcr::TinyProfile>();
+  dpcr::Mapper<dpcr::TinyProfile>::ScanType scan;
+  dpcr::Beam b;
+  b.range_m = 0.0f;
+  (void)scan.beams.push_back(b);
+  REQUIRE(m->AddScan(scan) == dpcr::Status::kNotEnoughData);
+  REQUIRE(m->counters().scans_rejected == 1);
+  REQUIRE(m->status() == dpcr::MapperStatus::kWaitingForData);
+}
+
+TEST_CASE("The odometry pipeline follows odometry and maps the room walls") {
+  auto m = MakeMapper<dpcr::VacuumProfile>();
+  using M = dpcr::Mapper<dpcr::VacuumProfile>;
+  const dpcr::test::SyntheticRun<M> run(8.0f, 400, 450);
+  Feed(*m, run);
+  // The first scan fixes the world frame at the robot's first pose.
+  const dpcr::Pose2 start = run.Sample(0.095f, 0.25f, 8.0f).pose;
+  const dpcr::Pose2 expected = dpcr::Between(start, run.Sample(39.995f, 0.25f, 8.0f).pose);
+  REQUIRE(m->pose().x == Approx(expected.x).margin(1e-3));
+  REQUIRE(m->pose().y == Approx(expected.y).margin(1e-3));
+  REQUIRE(m->status() == dpcr::MapperStatus::kTracking);
+  REQUIRE(m->region_count() >= 2);
+  // The wall at x = 8 m (world x = 8 - start.x) is occupied in the fused map; the room inside is free.
+  const dpcr::CellBox box = m->MapBounds();
+  std::vector<std::int16_t> cells(static_cast<std::size_t>(box.width() * box.height()));
+  REQUIRE(m->RenderMap(box, dpcr::Span<std::int16_t>(cells.data(), cells.size())) == dpcr::Status::kOk);
+  auto at = [&](float x, float y) {
+    const dpcr::CellIndex c = dpcr::CellOf(x - start.x, y - start.y, 0.05f);
+    return cells[static_cast<std::size_t>((c.y - box.min.y) * box.width() + (c.x - box.min.x))];
+  };
+  REQUIRE(dpcr::IsOccupied(at(7.99f, 4.0f)));
+  REQUIRE(dpcr::IsFree(at(4.0f, 4.0f)));
+}
+
+TEST_CASE("A full region pool stops map growth, keeps the pose, and says so") {
+  auto m = MakeMapper<dpcr::TinyProfile>();  // 4 regions of 4 m
+  using M = dpcr::Mapper<dpcr::TinyProfile>;
+  const dpcr::test::SyntheticRun<M> run(30.0f, 3000, 180);  // a 30 m hall: many regions
+  Feed(*m, run);
+  REQUIRE(m->region_count() == dpcr::TinyProfile::kMaxRegions);
+  REQUIRE(m->counters().region_pool_full > 0);
+  REQUIRE(m->status() == dpcr::MapperStatus::kPoolFull);
+  REQUIRE(m->counters().scans == 3000);
+  const dpcr::Pose2 start = run.Sample(0.095f, 0.25f, 30.0f).pose;
+  const dpcr::Pose2 expected = dpcr::Between(start, run.Sample(299.995f, 0.25f, 30.0f).pose);
+  REQUIRE(m->pose().x == Approx(expected.x).margin(1e-2));
+}

@@ -1,0 +1,71 @@
+#include "tools/eval/trajectory.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "host_sim/carmen/carmen_reader.hpp"
+
+namespace dpcr::eval {
+
+std::string FormatStamp(std::int64_t stamp_us) {
+  char buf[40];
+  const char* sign = stamp_us < 0 ? "-" : "";
+  const std::int64_t a = stamp_us < 0 ? -stamp_us : stamp_us;
+  std::snprintf(buf, sizeof(buf), "%s%lld.%06lld", sign, static_cast<long long>(a / 1000000),
+                static_cast<long long>(a % 1000000));
+  return buf;
+}
+
+void WriteTum(std::ostream& out, const Trajectory& trajectory) {
+  char buf[160];
+  for (const StampedPose& p : trajectory) {
+    const double half = 0.5 * static_cast<double>(p.pose.theta);
+    std::snprintf(buf, sizeof(buf), " %.6f %.6f 0 0 0 %.9f %.9f\n", static_cast<double>(p.pose.x),
+                  static_cast<double>(p.pose.y), std::sin(half), std::cos(half));
+    out << FormatStamp(p.stamp_us) << buf;
+  }
+}
+
+Trajectory ReadTum(std::istream& in) {
+  Trajectory out;
+  std::string text;
+  long line = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    const std::size_t first = text.find_first_not_of(" \t\r");
+    if (first == std::string::npos || text[first] == '#') continue;
+    std::istringstream s(text);
+    std::string stamp;
+    double x, y, z, qx, qy, qz, qw;
+    if (!(s >> stamp >> x >> y >> z >> qx >> qy >> qz >> qw)) {
+      throw std::runtime_error("line " + std::to_string(line) + ": expected 't x y z qx qy qz qw'");
+    }
+    StampedPose p;
+    try {
+      p.stamp_us = dpcr::carmen::ParseStampMicros(stamp);
+    } catch (const std::exception&) {
+      throw std::runtime_error("line " + std::to_string(line) + ": bad timestamp '" + stamp + "'");
+    }
+    p.pose.x = static_cast<float>(x);
+    p.pose.y = static_cast<float>(y);
+    // Yaw of a quaternion; roll and pitch are ignored (a 2D trajectory has none).
+    p.pose.theta = static_cast<float>(std::atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz)));
+    out.push_back(p);
+  }
+  return out;
+}
+
+Trajectory ReadTumFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  try {
+    return ReadTum(in);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+}
+
+}  // namespace dpcr::eval
