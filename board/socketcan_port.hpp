@@ -1,0 +1,22 @@
+// SocketCAN raw socket for the wheel encoders, and struct can_frame reads from any fd (the
+// firmware test passes one end of a socketpair carrying struct can_frame: same code path).
+#pragma once
+
+#include <string>
+
+#include "hal/can_frame.hpp"
+#include "hal/ports.hpp"
+
+namespace dpcr::board {
+
+// Opens a CAN_RAW socket on `interface`, non-blocking, with receive filters for the wheel
+// protocol IDs (0x120, 0x121) and error frames. -1 with "interface: step: strerror" on failure.
+int OpenSocketCan(const std::string& interface, std::string* error);
+
+// Reads one struct can_frame from `fd` (non-blocking). kWouldBlock when none is queued,
+// kEndOfStream when the peer closed, kIoError (errno kept) otherwise.
+IoStatus ReadCanFrame(int fd, CanFrame* frame);
+// Writes one struct can_frame (tests, vcan smoke).
+IoStatus WriteCanFrame(int fd, const CanFrame& frame);
+
+}  // namespace dpcr::board

@@ -1,0 +1,59 @@
+// Differential-drive odometry from cumulative wheel ticks: exact circular-arc integration
+// (constant wheel speeds between samples), accumulated in double so long runs do not drift
+// from rounding.
+#pragma once
+
+#include <cstdint>
+
+#include "core/odometry.hpp"
+#include "core/pose2.hpp"
+#include "core/status.hpp"
+#include "hal/wheel_can_protocol.hpp"
+
+namespace dpcr {
+
+struct DiffDriveConfig {
+  float wheel_radius_m = 0.035f;   // typical vacuum drive wheel
+  float track_width_m = 0.235f;    // distance between the wheel contact points
+  float ticks_per_rev = 1000.0f;   // encoder ticks per wheel revolution (after gearing)
+  [[nodiscard]] Status Validate() const;
+};
+
+class DiffDriveOdometry {
+ public:
+  explicit DiffDriveOdometry(const DiffDriveConfig& config = DiffDriveConfig());
+
+  // Integrates to these cumulative ticks; the first call only sets the reference.
+  // Returns the absolute wheel pose stamped `stamp_us` (gyro fields unset).
+  OdometrySample Update(const WheelTicks& ticks, std::int64_t stamp_us);
+  Pose2 pose() const;
+  void Reset();
+
+ private:
+  DiffDriveConfig config_;
+  bool started_ = false;
+  std::int64_t last_left_ = 0;
+  std::int64_t last_right_ = 0;
+  double x_ = 0.0;
+  double y_ = 0.0;
+  double theta_ = 0.0;
+};
+
+// Maps a device clock (already unwrapped, us) to host time with the offset seen at the first
+// sample. Clock drift is not corrected (ppm-level over a cleaning run).
+class DeviceTimeBase {
+ public:
+  std::int64_t ToHostUs(std::int64_t device_us, std::int64_t host_us) {
+    if (!started_) {
+      started_ = true;
+      offset_us_ = host_us - device_us;
+    }
+    return device_us + offset_us_;
+  }
+
+ private:
+  bool started_ = false;
+  std::int64_t offset_us_ = 0;
+};
+
+}  // namespace dpcr

@@ -1,0 +1,117 @@
+#include "hal/wheel_can_protocol.hpp"
+
+#include "hal/byte_order.hpp"
+
+namespace dpcr {
+namespace {
+
+// A sequence step of 1..127 is "newer" (lost = step - 1); 128..255 is an older frame.
+constexpr int kSequenceHalfRange = 128;
+
+std::int16_t Wrap16(int v) { return static_cast<std::int16_t>(static_cast<std::uint16_t>(v & 0xFFFF)); }
+
+}  // namespace
+
+CanFrame EncodeWheelFrame(const WheelTicksFrame& frame) {
+  CanFrame out;
+  out.id = kWheelTicksCanId;
+  out.dlc = kWheelTicksDlc;
+  StoreLe16(&out.data[0], frame.left_ticks);
+  StoreLe16(&out.data[2], frame.right_ticks);
+  out.data[4] = frame.sequence;
+  StoreLe24(&out.data[5], frame.time_10us);
+  return out;
+}
+
+CanFrame EncodeGyroFrame(const GyroFrame& frame) {
+  CanFrame out;
+  out.id = kGyroCanId;
+  out.dlc = kGyroDlc;
+  StoreLe16(&out.data[0], static_cast<std::uint16_t>(frame.yaw_rate_mrad_s));
+  out.data[2] = frame.sequence;
+  StoreLe24(&out.data[3], frame.time_10us);
+  return out;
+}
+
+CanDecodeResult WheelCanDecoder::CheckSequence(Stream* stream, std::uint8_t sequence) {
+  if (!stream->started) return CanDecodeResult::kTicks;
+  const int step = (sequence - stream->last_sequence + 256) % 256;
+  if (step == 0) {
+    ++counters_.duplicated;
+    return CanDecodeResult::kDuplicate;
+  }
+  if (step >= kSequenceHalfRange) {
+    ++counters_.reordered;
+    if (counters_.lost > 0) --counters_.lost;  // it was counted lost when the gap appeared
+    return CanDecodeResult::kReordered;
+  }
+  counters_.lost += static_cast<std::uint32_t>(step - 1);
+  return CanDecodeResult::kTicks;
+}
+
+void WheelCanDecoder::AdvanceTime(Stream* stream, std::uint32_t time_10us, bool first) {
+  if (first) {
+    stream->time_us = static_cast<std::int64_t>(time_10us) * kWheelTimeUnitUs;
+  } else {
+    const std::int64_t delta =
+        (static_cast<std::int64_t>(time_10us) - stream->last_time + kWheelTimeWrapUnits) % kWheelTimeWrapUnits;
+    stream->time_us += delta * kWheelTimeUnitUs;
+  }
+  stream->last_time = time_10us;
+}
+
+CanDecodeResult WheelCanDecoder::Feed(const CanFrame& frame) {
+  if ((frame.id & kCanErrFlag) != 0) {
+    ++counters_.error_frames;
+    return CanDecodeResult::kErrorFrame;
+  }
+  if ((frame.id & (kCanEffFlag | kCanRtrFlag)) != 0 ||
+      (frame.id != kWheelTicksCanId && frame.id != kGyroCanId)) {
+    ++counters_.foreign;
+    return CanDecodeResult::kIgnored;
+  }
+  if (frame.id == kWheelTicksCanId) {
+    if (frame.dlc != kWheelTicksDlc) {
+      ++counters_.bad_dlc;
+      return CanDecodeResult::kBadDlc;
+    }
+    const std::uint8_t sequence = frame.data[4];
+    const CanDecodeResult r = CheckSequence(&ticks_stream_, sequence);
+    if (r != CanDecodeResult::kTicks) return r;
+    const std::uint16_t left = LoadLe16(&frame.data[0]);
+    const std::uint16_t right = LoadLe16(&frame.data[2]);
+    const bool first = !ticks_stream_.started;
+    if (first) {
+      ticks_.left_ticks = left;
+      ticks_.right_ticks = right;
+    } else {
+      ticks_.left_ticks += Wrap16(left - last_left_);
+      ticks_.right_ticks += Wrap16(right - last_right_);
+    }
+    last_left_ = left;
+    last_right_ = right;
+    AdvanceTime(&ticks_stream_, LoadLe24(&frame.data[5]), first);
+    ticks_stream_.started = true;
+    ticks_stream_.last_sequence = sequence;
+    ticks_.device_time_us = ticks_stream_.time_us;
+    ++counters_.ticks_frames;
+    return CanDecodeResult::kTicks;
+  }
+  if (frame.dlc != kGyroDlc) {
+    ++counters_.bad_dlc;
+    return CanDecodeResult::kBadDlc;
+  }
+  const std::uint8_t sequence = frame.data[2];
+  const CanDecodeResult r = CheckSequence(&gyro_stream_, sequence);
+  if (r != CanDecodeResult::kTicks) return r;
+  const bool first = !gyro_stream_.started;
+  AdvanceTime(&gyro_stream_, LoadLe24(&frame.data[3]), first);
+  gyro_stream_.started = true;
+  gyro_stream_.last_sequence = sequence;
+  gyro_.device_time_us = gyro_stream_.time_us;
+  gyro_.yaw_rate_rad_s = static_cast<float>(static_cast<std::int16_t>(LoadLe16(&frame.data[0]))) * 0.001f;
+  ++counters_.gyro_frames;
+  return CanDecodeResult::kGyro;
+}
+
+}  // namespace dpcr

@@ -1,0 +1,134 @@
+#include "host_sim/drivers/device_files.hpp"
+
+#include <cmath>
+
+#include "hal/ld06_emitter.hpp"
+
+namespace dpcr {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+constexpr std::int64_t kUnitsWrap = kWheelTimeWrapUnits;
+
+}  // namespace
+
+bool DeviceEmitter::Open(const std::string& dir, std::string* error) {
+  dir_ = dir;
+  return uart_.Open(dir + "/lidar.uart", "ld06 baud 230400", error);
+}
+
+bool DeviceEmitter::AddScan(const DeviceScan& scan) {
+  bool ok = true;
+  EmitLd06Revolution(scan, config_.angle_map, [this, &ok](const Ld06EmittedPacket& p) {
+    ok = ok && uart_.Write(p.arrival_us, p.bytes, sizeof(p.bytes));
+  });
+  return ok;
+}
+
+void DeviceEmitter::AddOdometry(const OdometrySample& sample) {
+  if (started_) {
+    // Increment in the previous robot frame -> arc length and heading change -> wheel travel.
+    const Pose2 d = Between(last_pose_, sample.pose);
+    const double dtheta = static_cast<double>(d.theta);
+    const double chord = std::hypot(static_cast<double>(d.x), static_cast<double>(d.y));
+    double ds = std::fabs(dtheta) < 1e-9 ? chord : chord * (dtheta / 2) / std::sin(dtheta / 2);
+    if (d.x < 0.0f) ds = -ds;
+    const double half_track = 0.5 * static_cast<double>(config_.wheels.track_width_m);
+    left_m_ += ds - dtheta * half_track;
+    right_m_ += ds + dtheta * half_track;
+  }
+  started_ = true;
+  last_pose_ = sample.pose;
+  const double ticks_per_m = static_cast<double>(config_.wheels.ticks_per_rev) /
+                             (kTwoPi * static_cast<double>(config_.wheels.wheel_radius_m));
+  WheelTicksFrame f;
+  f.left_ticks = static_cast<std::uint16_t>(std::llround(left_m_ * ticks_per_m) & 0xFFFF);
+  f.right_ticks = static_cast<std::uint16_t>(std::llround(right_m_ * ticks_per_m) & 0xFFFF);
+  f.sequence = ticks_seq_++;
+  f.time_10us = static_cast<std::uint32_t>((sample.stamp_us / kWheelTimeUnitUs) % kUnitsWrap);
+  CandumpRecord r;
+  r.stamp_us = sample.stamp_us;
+  r.interface = config_.can_interface;
+  if (sample.has_gyro) {
+    // Before the ticks frame of the same instant, so the odometry sample carries the rate.
+    GyroFrame g;
+    g.yaw_rate_mrad_s = static_cast<std::int16_t>(std::lround(sample.gyro_yaw_rate * 1000.0f));
+    g.sequence = gyro_seq_++;
+    g.time_10us = f.time_10us;
+    r.frame = EncodeGyroFrame(g);
+    can_.push_back(r);
+  }
+  r.frame = EncodeWheelFrame(f);
+  can_.push_back(r);
+}
+
+bool DeviceEmitter::Close(std::string* error) {
+  if (!uart_.Close()) {
+    *error = dir_ + "/lidar.uart: write failed";
+    return false;
+  }
+  return WriteCandumpLog(dir_ + "/wheels.log", can_, error);
+}
+
+DeviceReplay::DeviceReplay(const DeviceFilesConfig& files, const LidarStreamConfig& lidar)
+    : files_(files),
+      lidar_(new LidarStream(lidar)),
+      odo_(files.wheels),
+      scan_(new DeviceScan()) {}
+
+bool DeviceReplay::Open(const std::string& uart_path, const std::string& candump_path, std::string* error) {
+  std::vector<UartChunk> chunks;
+  if (!uart_path.empty() && !ReadUartCapture(uart_path, &chunks, error)) return false;
+  std::vector<CandumpRecord> records;
+  if (!candump_path.empty() && !ReadCandumpLog(candump_path, &records, error)) return false;
+  uart_.reset(new UartCaptureSource(std::move(chunks)));
+  can_.reset(new CandumpSource(std::move(records)));
+  return true;
+}
+
+DeviceReplay::Event DeviceReplay::Next() {
+  for (;;) {
+    const std::int64_t uart_t = pending_at_ < pending_.size() ? pending_stamp_ : uart_->next_stamp_us();
+    const std::int64_t can_t = can_->next_stamp_us();
+    if (can_t == INT64_MAX && uart_t == INT64_MAX) return Event::kEnd;
+    if (can_t <= uart_t) {
+      const CanRead r = can_->Read();
+      const CanDecodeResult d = wheels_.Feed(r.frame);
+      if (d == CanDecodeResult::kGyro) {
+        last_gyro_ = wheels_.gyro();
+        have_gyro_ = true;
+      }
+      if (d != CanDecodeResult::kTicks) continue;
+      const std::int64_t stamp = wheel_time_.ToHostUs(wheels_.ticks().device_time_us, r.stamp_us);
+      odometry_ = odo_.Update(wheels_.ticks(), stamp);
+      odometry_.has_gyro = have_gyro_;
+      odometry_.gyro_yaw_rate = last_gyro_.yaw_rate_rad_s;
+      ++odometry_count_;
+      return Event::kOdometry;
+    }
+    if (pending_at_ >= pending_.size()) {
+      pending_.resize(4096);
+      const ByteRead r = uart_->Read(pending_.data(), pending_.size());
+      pending_.resize(r.size);
+      pending_at_ = 0;
+      pending_stamp_ = r.stamp_us;
+    }
+    pending_at_ += lidar_->Feed(pending_.data() + pending_at_, pending_.size() - pending_at_, pending_stamp_);
+    if (lidar_->revolution_ready()) {
+      lidar_->TakeScan(scan_.get());
+      ++scans_;
+      return Event::kScan;
+    }
+  }
+}
+
+DeviceReplayCounters DeviceReplay::counters() const {
+  DeviceReplayCounters c;
+  c.lidar = lidar_->counters();
+  c.can = wheels_.counters();
+  c.scans = scans_;
+  c.odometry = odometry_count_;
+  return c;
+}
+
+}  // namespace dpcr

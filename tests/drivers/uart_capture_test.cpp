@@ -1,0 +1,59 @@
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "host_sim/drivers/uart_capture.hpp"
+
+TEST_CASE("uart capture write and read back, long chunks split") {
+  const std::string path = "uart_capture_test.uart";
+  std::vector<std::uint8_t> big(5000);
+  for (std::size_t i = 0; i < big.size(); ++i) big[i] = static_cast<std::uint8_t>(i * 7);
+  {
+    dpcr::UartCaptureWriter w;
+    std::string error;
+    REQUIRE(w.Open(path, "ld06 baud 230400", &error));
+    const std::uint8_t small[3] = {0x54, 0x2C, 0x00};
+    REQUIRE(w.Write(1700000000000123, small, 3));
+    REQUIRE(w.Write(1700000000002901, big.data(), big.size()));
+    REQUIRE(w.Close());
+  }
+  std::vector<dpcr::UartChunk> chunks;
+  std::string error;
+  REQUIRE(dpcr::ReadUartCapture(path, &chunks, &error));
+  REQUIRE(chunks.size() == 3);
+  CHECK(chunks[0].stamp_us == 1700000000000123);
+  CHECK(chunks[0].bytes == std::vector<std::uint8_t>({0x54, 0x2C, 0x00}));
+  CHECK(chunks[1].bytes.size() == 4096);
+  CHECK(chunks[2].bytes.size() == 904);
+  CHECK(chunks[2].bytes.back() == big.back());
+  dpcr::UartCaptureSource source(chunks);
+  std::uint8_t buf[2];
+  dpcr::ByteRead r = source.Read(buf, 2);
+  CHECK(r.size == 2);
+  CHECK(r.stamp_us == 1700000000000123);
+  r = source.Read(buf, 2);
+  CHECK(r.size == 1);
+  std::remove(path.c_str());
+}
+
+TEST_CASE("uart capture rejects a bad line and names it") {
+  const std::string path = "uart_capture_bad.uart";
+  {
+    std::ofstream f(path);
+    f << "# dpcr-uart-capture 1\n1.000000 54AA\n2.000000 5G\n";
+  }
+  std::vector<dpcr::UartChunk> chunks;
+  std::string error;
+  CHECK_FALSE(dpcr::ReadUartCapture(path, &chunks, &error));
+  CHECK(error.find(":3:") != std::string::npos);
+  CHECK(chunks.size() == 1);
+  dpcr::UartChunk c;
+  CHECK_FALSE(dpcr::ParseUartCaptureLine("1.00 54", &c));      // 2 decimals
+  CHECK_FALSE(dpcr::ParseUartCaptureLine("1.000000 545", &c));  // odd hex
+  CHECK_FALSE(dpcr::ReadUartCapture("does-not-exist.uart", &chunks, &error));
+  CHECK(error.find("does-not-exist.uart") != std::string::npos);
+  std::remove(path.c_str());
+}
