@@ -1,5 +1,6 @@
 // dpcr-replay: maps a recorded log through the core and writes map, trajectory and metrics.
 //   dpcr-replay --carmen FILE.clf [--relations FILE] [--out DIR]
+//   dpcr-replay --uart lidar.uart --candump wheels.log [--lidar ld06|xv11] [--out DIR]
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include "core/mapper.hpp"
 #include "host_sim/apps/progress.hpp"
 #include "host_sim/carmen/carmen_reader.hpp"
+#include "host_sim/drivers/device_files.hpp"
 #include "host_sim/output/run_report.hpp"
 
 namespace {
@@ -18,13 +20,30 @@ using Clock = std::chrono::steady_clock;
 
 struct Options {
   std::string carmen;
+  std::string uart;
+  std::string candump;
+  std::string lidar = "ld06";
+  float angle_sign = 1.0f;
   std::string relations;
   std::string out = "out/replay";
-  std::string profile = "building";
+  std::string profile;  // default: building for CARMEN logs, vacuum for device files
   std::string odometry = "laser";
   float max_range_m = 20.0f;
   float laser_offset_m = NAN;  // NAN: the log's PARAM robot_frontlaser_offset, else 0
 };
+
+void PrintSummary(const dpcr::output::RunRecord& run, const nlohmann::json& metrics, const std::string& out) {
+  std::fprintf(stderr, "dpcr-replay: %zu scans in %.2f s (%.0f scans/s), mapper %s, %d regions",
+               run.estimate.size(), run.wall_seconds, static_cast<double>(run.estimate.size()) / run.wall_seconds,
+               metrics["mapper"].get<std::string>().c_str(), metrics["regions"].get<int>());
+  if (metrics.contains("relations")) {
+    const auto& r = metrics["relations"];
+    std::fprintf(stderr, ", relations %.3f +- %.3f m / %.2f +- %.2f deg (%d matched, %d unmatched)",
+                 r["trans_mean_m"].get<double>(), r["trans_std_m"].get<double>(), r["rot_mean_deg"].get<double>(),
+                 r["rot_std_deg"].get<double>(), r["matched"].get<int>(), r["unmatched"].get<int>());
+  }
+  std::fprintf(stderr, " -> %s/\n", out.c_str());
+}
 
 template <class Profile>
 int ReplayCarmen(const Options& opt) {
@@ -109,16 +128,52 @@ int ReplayCarmen(const Options& opt) {
                       {"decimated_scans", decimated_scans}, {"odometry_source", opt.odometry}};
   metrics = dpcr::output::WriteRunOutputs(opt.out, dpcr::output::RenderFused(mapper), run, metrics);
 
-  std::fprintf(stderr, "dpcr-replay: %zu scans in %.2f s (%.0f scans/s), mapper %s, %d regions",
-               run.estimate.size(), run.wall_seconds, static_cast<double>(run.estimate.size()) / run.wall_seconds,
-               mapper.pipeline(), mapper.region_count());
-  if (metrics.contains("relations")) {
-    const auto& r = metrics["relations"];
-    std::fprintf(stderr, ", relations %.3f +- %.3f m / %.2f +- %.2f deg (%d matched, %d unmatched)",
-                 r["trans_mean_m"].get<double>(), r["trans_std_m"].get<double>(), r["rot_mean_deg"].get<double>(),
-                 r["rot_std_deg"].get<double>(), r["matched"].get<int>(), r["unmatched"].get<int>());
+  PrintSummary(run, metrics, opt.out);
+  return 0;
+}
+
+// dpcr-replay --uart --candump: the whole device decode path (LD06/XV-11 bytes, CAN wheel frames).
+template <class Profile>
+int ReplayDevice(const Options& opt) {
+  using MapperType = dpcr::Mapper<Profile>;
+  static MapperType mapper;
+  static typename MapperType::ScanType scan;
+  dpcr::DeviceFilesConfig files;
+  files.angle_map.angle_sign = opt.angle_sign;
+  dpcr::LidarStreamConfig lidar;
+  lidar.kind = opt.lidar == "xv11" ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06;
+  lidar.assembler.angle_map = files.angle_map;
+  dpcr::DeviceReplay replay(files, lidar);
+  std::string error;
+  if (!replay.Open(opt.uart, opt.candump, &error)) throw std::runtime_error(error);
+  if (mapper.Init(dpcr::MapperConfig{}) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
+  const auto start = Clock::now();
+  dpcr::output::RunRecord run;
+  for (auto e = replay.Next(); e != dpcr::DeviceReplay::Event::kEnd; e = replay.Next()) {
+    if (e == dpcr::DeviceReplay::Event::kOdometry) {
+      mapper.AddOdometry(replay.odometry());
+      continue;
+    }
+    const auto& s = replay.scan();
+    scan.stamp_us = s.stamp_us;
+    scan.beams.clear();
+    for (const auto& b : s.beams) (void)scan.beams.push_back(b);
+    const auto t0 = Clock::now();
+    (void)mapper.AddScan(scan);
+    run.per_scan_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    run.estimate.push_back({scan.stamp_us, mapper.pose()});
   }
-  std::fprintf(stderr, " -> %s/\n", opt.out.c_str());
+  if (run.estimate.empty()) throw std::runtime_error(opt.uart + ": no complete lidar revolution decoded");
+  run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  std::filesystem::create_directories(opt.out);
+  nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
+  const auto c = replay.counters();
+  metrics["input"] = {{"uart", opt.uart}, {"candump", opt.candump}, {"lidar", opt.lidar},
+                      {"packets", c.lidar.packets}, {"bad_packets", c.lidar.bad_packets}, {"resyncs", c.lidar.resyncs},
+                      {"discarded_bytes", c.lidar.discarded_bytes}, {"revolutions", c.lidar.revolutions},
+                      {"gaps", c.lidar.gaps}, {"decimated", c.lidar.decimated}, {"odometry", c.odometry}};
+  metrics = dpcr::output::WriteRunOutputs(opt.out, dpcr::output::RenderFused(mapper), run, metrics);
+  PrintSummary(run, metrics, opt.out);
   return 0;
 }
 
@@ -131,17 +186,26 @@ int main(int argc, char** argv) {
   app.add_option("--relations", opt.relations, "ground-truth relations file (t1 t2 x y z roll pitch yaw)")
       ->check(CLI::ExistingFile);
   app.add_option("--out", opt.out, "output directory")->capture_default_str();
-  app.add_option("--profile", opt.profile, "capacity profile")->check(CLI::IsMember({"building", "vacuum"}))->capture_default_str();
+  app.add_option("--profile", opt.profile, "capacity profile (default: building for --carmen, vacuum for --uart)")
+      ->check(CLI::IsMember({"building", "vacuum"}));
   app.add_option("--odometry", opt.odometry, "odometry source: the pose logged with each scan, or ODOM lines")
       ->check(CLI::IsMember({"laser", "odom"}))->capture_default_str();
   app.add_option("--max-range", opt.max_range_m, "ignore returns farther than this (m)")->capture_default_str();
   app.add_option("--laser-offset", opt.laser_offset_m, "lidar ahead of the robot centre (m); default: the log's PARAM");
+  app.add_option("--uart", opt.uart, "lidar UART capture (docs/uart-capture-format.md)")->check(CLI::ExistingFile);
+  app.add_option("--candump", opt.candump, "wheel-encoder CAN log (candump -l format)")->check(CLI::ExistingFile);
+  app.add_option("--lidar", opt.lidar, "lidar protocol in the UART capture")->check(CLI::IsMember({"ld06", "xv11"}))->capture_default_str();
+  app.add_option("--angle-sign", opt.angle_sign, "+1: device angles counter-clockwise (dpcr-sim), -1: clockwise (an upright LD06)")
+      ->check(CLI::IsMember({1.0f, -1.0f}))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
-  if (opt.carmen.empty()) {
-    std::fprintf(stderr, "dpcr-replay: nothing to replay: give --carmen FILE\n%s", app.help().c_str());
+  if (opt.carmen.empty() == opt.uart.empty()) {
+    std::fprintf(stderr, "dpcr-replay: give either --carmen FILE or --uart FILE [--candump FILE]\n%s", app.help().c_str());
     return 2;
   }
   try {
+    if (!opt.uart.empty()) {
+      return opt.profile == "building" ? ReplayDevice<dpcr::BuildingProfile>(opt) : ReplayDevice<dpcr::VacuumProfile>(opt);
+    }
     return opt.profile == "vacuum" ? ReplayCarmen<dpcr::VacuumProfile>(opt) : ReplayCarmen<dpcr::BuildingProfile>(opt);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dpcr-replay: error: %s\n", e.what());
