@@ -3,16 +3,6 @@
 #include "core/assert.hpp"
 
 namespace dpcr {
-namespace {
-
-// Floor division for negative cell coordinates (tile of cell -1 is tile -1, not 0).
-std::int32_t FloorDiv(std::int32_t a, std::int32_t b) {
-  const std::int32_t q = a / b;
-  return (a % b != 0 && (a < 0) != (b < 0)) ? q - 1 : q;
-}
-
-}  // namespace
-
 TiledGrid::TiledGrid(TilePool* pool, Span<TileId> index, int tiles_x, int tiles_y)
     : pool_(pool), index_(index), tiles_x_(tiles_x), tiles_y_(tiles_y) {
   DPCR_ASSERT(tiles_x > 0 && tiles_y > 0);
@@ -35,12 +25,16 @@ CellBox TiledGrid::box() const {
 }
 
 int TiledGrid::SlotOf(CellIndex c, int* offset) const {
-  const std::int32_t tx = FloorDiv(c.x, kTileSide) - origin_tile_.x;
-  const std::int32_t ty = FloorDiv(c.y, kTileSide) - origin_tile_.y;
-  if (tx < 0 || ty < 0 || tx >= tiles_x_ || ty >= tiles_y_) return -1;
-  const std::int32_t lx = c.x - (tx + origin_tile_.x) * kTileSide;
-  const std::int32_t ly = c.y - (ty + origin_tile_.y) * kTileSide;
-  *offset = ly * kTileSide + lx;
+  // Tiles are 32 cells: an arithmetic shift is the floor division (GCC and Clang shift signed
+  // integers arithmetically), and this is the hottest line of ray casting.
+  static_assert(kTileSide == 32, "shift and mask below assume 32-cell tiles");
+  const std::int32_t tx = (c.x >> 5) - origin_tile_.x;
+  const std::int32_t ty = (c.y >> 5) - origin_tile_.y;
+  if (static_cast<std::uint32_t>(tx) >= static_cast<std::uint32_t>(tiles_x_) ||
+      static_cast<std::uint32_t>(ty) >= static_cast<std::uint32_t>(tiles_y_)) {
+    return -1;
+  }
+  *offset = ((c.y & 31) << 5) | (c.x & 31);
   return ty * tiles_x_ + tx;
 }
 
@@ -69,12 +63,10 @@ Tile* TiledGrid::TileForWrite(int slot) {
   return &(*pool_)[id];
 }
 
-bool TiledGrid::Reserve(CellIndex c, std::uint32_t stamp) {
-  int offset = 0;
-  const int slot = SlotOf(c, &offset);
-  if (slot < 0) return false;
-  Tile* tile = TileForWrite(slot);
-  if (tile == nullptr) return false;
+namespace {
+
+// Marks `offset` as updated in scan `stamp`; false if it already was.
+bool MarkOnce(Tile* tile, int offset, std::uint32_t stamp) {
   if (tile->stamp != stamp) {
     for (std::uint32_t& word : tile->updated) word = 0;
     tile->stamp = stamp;
@@ -86,17 +78,25 @@ bool TiledGrid::Reserve(CellIndex c, std::uint32_t stamp) {
   return true;
 }
 
+}  // namespace
+
+bool TiledGrid::Reserve(CellIndex c, std::uint32_t stamp) {
+  int offset = 0;
+  const int slot = SlotOf(c, &offset);
+  if (slot < 0) return false;
+  Tile* tile = TileForWrite(slot);
+  return tile != nullptr && MarkOnce(tile, offset, stamp);
+}
+
 Status TiledGrid::Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::int16_t hi,
                          std::uint32_t stamp) {
   int offset = 0;
   const int slot = SlotOf(c, &offset);
   if (slot < 0) return Status::kOutOfBounds;
-  if (stamp != 0 && !Reserve(c, stamp)) {
-    // Either already updated in this scan (a legal repeat) or no tile could be had.
-    return index_[static_cast<std::size_t>(slot)] == kNoTile ? Status::kPoolFull : Status::kOk;
-  }
   Tile* tile = TileForWrite(slot);
   if (tile == nullptr) return Status::kPoolFull;
+  // Already updated in this scan: a legal repeat, nothing to do.
+  if (stamp != 0 && !MarkOnce(tile, offset, stamp)) return Status::kOk;
   std::int16_t& cell = tile->cells[offset];
   const int base = cell == kUnknownCell ? 0 : cell;
   int v = base + delta;
