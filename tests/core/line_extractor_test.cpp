@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/capacity.hpp"
 #include "registration_fixtures.hpp"
 
 using dpcr::Point2;
@@ -126,4 +127,12 @@ TEST_CASE("More obstacle cells than capacity are reported, not silently lost") {
   CHECK(f.Build(&stats) == dpcr::Status::kCapacityExceeded);
   CHECK(stats.dropped_cells > 0);
   CHECK(f.ref->cell_count() == 4096);
+}
+
+TEST_CASE("One vacuum-profile reference (256x256 window, 4096 cells, 512 lines) stays within 200 KiB") {
+  using VacuumReference = dpcr::RegistrationReferenceStorage<dpcr::VacuumProfile::kSubmapSideCells,
+                                                             dpcr::VacuumProfile::kSubmapSideCells, 4096,
+                                                             dpcr::VacuumProfile::kMaxLines>;
+  INFO("sizeof = " << sizeof(VacuumReference));
+  CHECK(sizeof(VacuumReference) <= 200u * 1024u);
 }
