@@ -29,7 +29,8 @@ struct PlicpConfig {
   // the cell's 5x5 normal, else point-to-point; down-weighted, they keep corridors constrained.
   float local_line_weight = 0.5f;
   float point_weight = 0.25f;
-  // Stop: step below these, or the same correspondences twice with a step below 10x these.
+  // Stop: step below these, or the correspondence set of one or two iterations ago again with a
+  // step below 10x these.
   float min_step_m = 1e-4f;
   float min_step_rad = 1e-4f;
   // Acceptance.

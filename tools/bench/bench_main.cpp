@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   r->add_option("--seed", reg.seed, "random seed");
   r->add_option("--callgrind", reg.callgrind_count, "run N registrations of --method under callgrind toggles");
   r->add_option("--method", reg.method, "improved | classic (callgrind mode)");
+  r->add_option("--figure", reg.figure_path, "write a PNG of one registration (submap, lines, scans)");
   CLI11_PARSE(app, argc, argv);
   if (r->parsed()) return dpcr_bench::RunRegistrationBench(reg);
   return 0;
