@@ -54,7 +54,9 @@ struct PosePrior {
 
 struct RegistrationResult {
   Pose2 pose;                    // target frame in the reference's world frame
-  Eigen::Matrix3f hessian = Eigen::Matrix3f::Zero();  // Σ w JᵀJ of the points (no prior), (x, y, θ)
+  // Σ w JᵀJ of the points (no prior) over (x, y, θ). Like the ratios below, taken at the last
+  // linearisation point, i.e. one (stop-sized) step before `pose`.
+  Eigen::Matrix3f hessian = Eigen::Matrix3f::Zero();
   float inlier_ratio = 0.0f;     // inliers / target points
   float mean_residual_m = 0.0f;  // mean |residual| of the inliers
   int iterations = 0;
