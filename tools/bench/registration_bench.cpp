@@ -117,16 +117,26 @@ struct SimCase {
   std::unique_ptr<Reference> ref;
   std::vector<Point2> target;
   Pose2 truth;
+  double build_us = 0.0;
+  dpcr::ReferenceBuildStats stats;
 };
 
 // Scan k of a world's path against the submap of scans k-10 .. k-1 at their true poses.
-SimCase MakeSimCase(const World& w, std::size_t k, unsigned seed) {
-  SimCase c{w.name, std::make_unique<Reference>(), {}, w.path[k]};
+// `callgrind_build`: collect instructions around the reference build only (and dump them).
+SimCase MakeSimCase(const World& w, std::size_t k, unsigned seed, bool callgrind_build = false) {
+  SimCase c{w.name, std::make_unique<Reference>(), {}, w.path[k], 0.0, {}};
   Submap submap(Point2{c.truth.x, c.truth.y});
   for (std::size_t j = k - 10; j < k; ++j) {
     submap.Insert(SimulateScan(w, w.path[j], 450, 0.02f, seed * 1000u + static_cast<unsigned>(j), 8.0f), w.path[j]);
   }
-  (void)c.ref->Build(*submap.grid, submap.grid->box(), dpcr::ReferenceConfig{}, nullptr);
+  const auto start = std::chrono::steady_clock::now();
+  if (callgrind_build) CALLGRIND_TOGGLE_COLLECT;
+  (void)c.ref->Build(*submap.grid, submap.grid->box(), dpcr::ReferenceConfig{}, &c.stats);
+  if (callgrind_build) {
+    CALLGRIND_TOGGLE_COLLECT;
+    CALLGRIND_DUMP_STATS;
+  }
+  c.build_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
   c.target = SimulateScan(w, c.truth, 450, 0.02f, seed * 7919u + static_cast<unsigned>(k), 8.0f);
   return c;
 }
@@ -266,6 +276,17 @@ int RunCallgrind(const RegistrationBenchOptions& o) {
   const Method m = o.method == "classic" ? Method::kClassic : Method::kImproved;
   std::mt19937 rng(o.seed);
   const std::vector<World> worlds = MakeWorlds();
+  if (o.method == "build") {  // reference builds (lines + table) instead of registrations
+    int built = 0;
+    for (const World& w : worlds) {
+      for (std::size_t k : SimIndices(w, o.sim_poses_per_world)) {
+        if (built++ == o.callgrind_count) return 0;
+        const SimCase c = MakeSimCase(w, k, o.seed, true);
+        std::printf("%d %s cells %d iterations %d\n", built, c.world.c_str(), c.stats.obstacle_cells, c.stats.lines);
+      }
+    }
+    return 0;
+  }
   const int total = static_cast<int>(worlds.size()) * o.sim_poses_per_world * o.perturbations;
   const int stride = std::max(1, total / o.callgrind_count);
   int index = 0, done = 0;
@@ -295,16 +316,21 @@ int RunRegistrationBench(const RegistrationBenchOptions& o) {
   Table table;
   std::mt19937 rng(o.seed);
   std::size_t points = 0, cases = 0;
+  std::vector<double> build_us, cells, lines;
   for (const World& w : MakeWorlds()) {
     for (std::size_t k : SimIndices(w, o.sim_poses_per_world)) {
       const SimCase c = MakeSimCase(w, k, o.seed);
       const Pose2 truth[2] = {c.truth, c.truth};
       RunCase("sim " + w.name, *c.ref, c.target, truth, Perturbations(o.perturbations, &rng), &table);
       points += c.target.size();
+      build_us.push_back(c.build_us);
+      cells.push_back(c.stats.obstacle_cells);
+      lines.push_back(c.stats.lines);
       ++cases;
     }
   }
-  std::fprintf(stderr, "sim: %zu scan->submap cases, %.0f points per scan\n", cases, static_cast<double>(points) / static_cast<double>(cases));
+  std::fprintf(stderr, "sim: %zu scan->submap cases, %.0f points per scan; reference build median %.0f us, %.0f obstacle cells, %.0f lines\n",
+               cases, static_cast<double>(points) / static_cast<double>(cases), Median(build_us), Median(cells), Median(lines));
 
   const std::vector<ClfScan> scans = ReadClf(o.clf_path);
   int kept = 0, tried = 0;
