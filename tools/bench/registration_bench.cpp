@@ -282,7 +282,7 @@ int RunCallgrind(const RegistrationBenchOptions& o) {
       for (std::size_t k : SimIndices(w, o.sim_poses_per_world)) {
         if (built++ == o.callgrind_count) return 0;
         const SimCase c = MakeSimCase(w, k, o.seed, true);
-        std::printf("%d %s cells %d iterations %d\n", built, c.world.c_str(), c.stats.obstacle_cells, c.stats.lines);
+        std::printf("%d %s cells %d lines %d\n", built, c.world.c_str(), c.stats.obstacle_cells, c.stats.lines);
       }
     }
     return 0;
