@@ -199,3 +199,25 @@ TEST_CASE("Improved PLICP converges from 40 seeded random starts within 0.3 m an
   }
   CHECK(ok == 40);
 }
+
+TEST_CASE("A reference of clutter only (pillars, no line features) still registers through the fallbacks") {
+  GridFixture f;
+  std::vector<Segment> pillars;  // 10 cm square pillars: too short to be lines
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const float x = 1.5f + 1.1f * static_cast<float>(i) + 0.013f, y = 1.5f + 1.3f * static_cast<float>(j) + 0.011f;
+      const Point2 a{x, y}, b{x + 0.1f, y}, c{x + 0.1f, y + 0.1f}, d{x, y + 0.1f};
+      pillars.insert(pillars.end(), {{a, b}, {b, c}, {c, d}, {d, a}});
+    }
+  }
+  for (const Segment& s : pillars) f.Draw(s);
+  REQUIRE(f.Build() == dpcr::Status::kOk);
+  CHECK(f.ref->line_count() == 0);
+  const Pose2 truth{3.9f, 3.4f, 0.2f};
+  const auto scan = dpcr_test::SimulateScan(pillars, truth, 450, 0.005f, 8);
+  const Pose2 start{truth.x + 0.06f, truth.y - 0.05f, truth.theta + 2.0f * kDeg};
+  const auto r = dpcr::RegisterImproved(*f.ref, SpanOf(scan), start, nullptr, dpcr::PlicpConfig{});
+  INFO("pose " << r.pose.x << " " << r.pose.y << " " << r.pose.theta << " it " << r.iterations);
+  CHECK(PosErr(r.pose, truth) < 0.03f);
+  CHECK(AngErr(r.pose, truth) < 1.0f * kDeg);
+}
