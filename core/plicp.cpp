@@ -12,8 +12,8 @@ namespace {
 constexpr int kBins = 256;
 
 struct Histogram {
-  std::uint16_t count[kBins] = {};
-  int total = 0;
+  std::uint32_t count[kBins] = {};
+  std::uint32_t total = 0;
   void Add(float r, float inv_bin) {
     int b = static_cast<int>(r * inv_bin);
     b = b >= kBins ? kBins - 1 : b;
@@ -21,8 +21,8 @@ struct Histogram {
     ++total;
   }
   float Percentile(float q, float bin_m) const {
-    const int want = static_cast<int>(q * static_cast<float>(total));
-    int seen = 0;
+    const auto want = static_cast<std::uint32_t>(q * static_cast<float>(total));
+    std::uint32_t seen = 0;
     for (int b = 0; b < kBins; ++b) {
       seen += count[b];
       if (seen > want) return static_cast<float>(b + 1) * bin_m;

@@ -156,7 +156,7 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
     }
   }
   if (stats != nullptr) *stats = st;
-  return st.dropped_cells > 0 ? Status::kCapacityExceeded : Status::kOk;
+  return (st.dropped_cells > 0 || st.extraction.lines_full) ? Status::kCapacityExceeded : Status::kOk;
 }
 
 }  // namespace dpcr

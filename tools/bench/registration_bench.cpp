@@ -143,6 +143,7 @@ SimCase MakeSimCase(const World& w, std::size_t k, unsigned seed, bool callgrind
 
 std::vector<std::size_t> SimIndices(const World& w, int n) {
   std::vector<std::size_t> out;
+  if (n < 2) return {10};
   for (int i = 0; i < n; ++i) out.push_back(10 + (w.path.size() - 11) * static_cast<std::size_t>(i) / static_cast<std::size_t>(n - 1));
   return out;
 }
