@@ -187,14 +187,14 @@ int ExtractLines(Span<ObstacleCell> cells, const std::uint16_t* cell_at, int w, 
   std::uint32_t end = 0;
   for (std::uint32_t seed = 0; seed < cells.size(); ++seed) {
     if (cells[seed].line != kNoLine) continue;
-    // 1. One 8-connected component, breadth first, using perm itself as the queue.
+    // 1. One connected component (cells within link_radius_cells), breadth first, using perm itself as the queue.
     const std::uint32_t start = end;
     perm[end++] = static_cast<std::uint16_t>(seed);
     cells[seed].line = kVisited;
     for (std::uint32_t q = start; q < end; ++q) {
       const ObstacleCell c = cells[perm[q]];
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -config.link_radius_cells; dy <= config.link_radius_cells; ++dy) {
+        for (int dx = -config.link_radius_cells; dx <= config.link_radius_cells; ++dx) {
           const int x = c.x + dx, y = c.y + dy;
           if (x < 0 || y < 0 || x >= w || y >= h) continue;
           const std::uint16_t k = cell_at[y * w + x];

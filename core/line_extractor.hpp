@@ -1,6 +1,6 @@
 // Line features from the obstacle cells of an int16 occupancy grid, standing in for RM-Line
 // (the paper's §3.2.1 step 1, which has no public code). Pipeline (DESIGN §3):
-//   8-connected components of obstacle cells  ->  iterative end-point split of each component
+//   connected components of obstacle cells (gaps up to link_radius_cells - 1 bridged)  ->  iterative end-point split of each component
 //   (Douglas–Peucker on an unordered cell set, explicit stack)  ->  total-least-squares refit
 //   ->  merge of collinear neighbours  ->  a line id per obstacle cell.
 // Everything is in window-local cell units (cell (x, y) has its centre at (x + 0.5, y + 0.5));
@@ -38,6 +38,9 @@ struct LineFeature {
 };
 
 struct LineExtractorConfig {
+  // Cells this close (Chebyshev) are linked into one component. 1 = 8-connected; 2 bridges the
+  // one-cell gaps of walls seen at grazing angles, which otherwise fall apart into clutter.
+  int link_radius_cells = 2;
   float split_tolerance_cells = 1.5f;  // Douglas–Peucker epsilon (DESIGN: 1–1.5 cells)
   int min_support = 5;                 // fewer cells are clutter (chair legs), not a line
   // A leaf or merge fitting worse than this is not a line. A rasterised slanted wall alone has

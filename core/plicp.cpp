@@ -12,8 +12,8 @@ namespace {
 constexpr int kBins = 256;
 
 struct Histogram {
-  std::uint16_t count[kBins] = {};
-  int total = 0;
+  std::uint32_t count[kBins] = {};
+  std::uint32_t total = 0;
   void Add(float r, float inv_bin) {
     int b = static_cast<int>(r * inv_bin);
     b = b >= kBins ? kBins - 1 : b;
@@ -21,8 +21,8 @@ struct Histogram {
     ++total;
   }
   float Percentile(float q, float bin_m) const {
-    const int want = static_cast<int>(q * static_cast<float>(total));
-    int seen = 0;
+    const auto want = static_cast<std::uint32_t>(q * static_cast<float>(total));
+    std::uint32_t seen = 0;
     for (int b = 0; b < kBins; ++b) {
       seen += count[b];
       if (seen > want) return static_cast<float>(b + 1) * bin_m;
@@ -58,7 +58,7 @@ RegistrationResult RunPlicp(const RegistrationReference& ref, Span<const Point2>
                             const PosePrior* prior, const PlicpConfig& config, CorrespondenceFn find) {
   RegistrationResult result;
   Pose2 pose = initial;
-  std::uint32_t last_hash = 0;
+  std::uint32_t last_hash = 0, older_hash = 0;  // correspondence sets of the last two iterations
   bool fine_phase = false;
   int inliers = 0;
   float residual_sum = 0.0f;
@@ -134,11 +134,15 @@ RegistrationResult RunPlicp(const RegistrationReference& ref, Span<const Point2>
     const bool was_fine = fine_phase;
     fine_phase = dt < config.fine_phase_step_m && da < config.fine_phase_step_rad;
     if (!was_fine) {  // the stop tests below hold for the trimmed problem only
+      older_hash = last_hash;
       last_hash = hash;
       continue;
     }
     if (dt < config.min_step_m && da < config.min_step_rad) break;
-    if (hash == last_hash && dt < 10.0f * config.min_step_m && da < 10.0f * config.min_step_rad) break;
+    // Same set as one or two iterations ago (a two-cycle between neighbouring cells): converged.
+    const bool repeated = hash == last_hash || hash == older_hash;
+    if (repeated && dt < 10.0f * config.min_step_m && da < 10.0f * config.min_step_rad) break;
+    older_hash = last_hash;
     last_hash = hash;
   }
 

@@ -29,7 +29,8 @@ struct PlicpConfig {
   // the cell's 5x5 normal, else point-to-point; down-weighted, they keep corridors constrained.
   float local_line_weight = 0.5f;
   float point_weight = 0.25f;
-  // Stop: step below these, or the same correspondences twice with a step below 10x these.
+  // Stop: step below these, or the correspondence set of one or two iterations ago again with a
+  // step below 10x these.
   float min_step_m = 1e-4f;
   float min_step_rad = 1e-4f;
   // Acceptance.
@@ -53,7 +54,9 @@ struct PosePrior {
 
 struct RegistrationResult {
   Pose2 pose;                    // target frame in the reference's world frame
-  Eigen::Matrix3f hessian = Eigen::Matrix3f::Zero();  // Σ w JᵀJ of the points (no prior), (x, y, θ)
+  // Σ w JᵀJ of the points (no prior) over (x, y, θ). Like the ratios below, taken at the last
+  // linearisation point, i.e. one (stop-sized) step before `pose`.
+  Eigen::Matrix3f hessian = Eigen::Matrix3f::Zero();
   float inlier_ratio = 0.0f;     // inliers / target points
   float mean_residual_m = 0.0f;  // mean |residual| of the inliers
   int iterations = 0;

@@ -1,9 +1,15 @@
 #include "core/registration_reference.hpp"
 
+#include <cstdint>
+
 #include "core/assert.hpp"
 
 namespace dpcr {
 namespace {
+
+// Distance-transform skip mask: up to 16 x 16 blocks of 32 cells (a 512-cell window); larger
+// windows visit every cell.
+constexpr int kMaxBlocks = 256;
 
 std::int32_t Dist2(const ObstacleCell& c, int x, int y) {
   const std::int32_t dx = c.x - x, dy = c.y - y;
@@ -92,33 +98,57 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
 
   // 3. Nearest obstacle cell per window cell: two raster passes propagating seed ids (vector
   // distance transform, 8SSEDT-like; exact up to rare one-cell ties), then cut at the bound.
-  const auto relax = [&](int x, int y, int nx, int ny) {
-    if (nx < 0 || ny < 0 || nx >= w_ || ny >= h_) return;
-    const std::uint16_t cand = nearest_[static_cast<std::size_t>(ny * w_ + nx)];
-    if (cand == kNoCell) return;
-    std::uint16_t& cur = nearest_[static_cast<std::size_t>(y * w_ + x)];
-    if (cur == kNoCell || Dist2(cells_[cand], x, y) < Dist2(cells_[cur], x, y)) cur = cand;
-  };
-  for (int y = 0; y < h_; ++y) {
-    for (int x = 0; x < w_; ++x) {
-      relax(x, y, x - 1, y);
-      relax(x, y, x - 1, y - 1);
-      relax(x, y, x, y - 1);
-      relax(x, y, x + 1, y - 1);
-    }
-    for (int x = w_ - 1; x >= 0; --x) relax(x, y, x + 1, y);
-  }
-  for (int y = h_ - 1; y >= 0; --y) {
-    for (int x = w_ - 1; x >= 0; --x) {
-      relax(x, y, x + 1, y);
-      relax(x, y, x + 1, y + 1);
-      relax(x, y, x, y + 1);
-      relax(x, y, x - 1, y + 1);
-    }
-    for (int x = 0; x < w_; ++x) relax(x, y, x - 1, y);
-  }
+  // Per cell the current distance is computed once, and a neighbour holding the same seed is
+  // skipped, so the usual cost is a few loads per cell.
+  // Blocks of 32x32 cells farther than the bound from every obstacle cell keep kNoCell and are
+  // not visited (any cell on the propagation path from a seed to a cell within the bound is itself
+  // within the bound of that seed, so skipping them changes no answer).
   const float bound_cells = config.max_distance_m * inv_res_;
   const std::int32_t bound2 = static_cast<std::int32_t>(bound_cells * bound_cells);
+  const int reach = static_cast<int>(bound_cells) + 1;
+  constexpr int kBlockShift = 5;
+  const int blocks_x = (w_ + 31) >> kBlockShift, blocks_y = (h_ + 31) >> kBlockShift;
+  bool active[kMaxBlocks];
+  const bool use_blocks = blocks_x * blocks_y <= kMaxBlocks;
+  for (bool& a : active) a = !use_blocks;
+  if (use_blocks) {
+    for (std::size_t i = 0; i < cell_count_; ++i) {
+      const int bx0 = (cells_[i].x - reach < 0 ? 0 : cells_[i].x - reach) >> kBlockShift;
+      const int by0 = (cells_[i].y - reach < 0 ? 0 : cells_[i].y - reach) >> kBlockShift;
+      const int bx1 = (cells_[i].x + reach >= w_ ? w_ - 1 : cells_[i].x + reach) >> kBlockShift;
+      const int by1 = (cells_[i].y + reach >= h_ ? h_ - 1 : cells_[i].y + reach) >> kBlockShift;
+      for (int by = by0; by <= by1; ++by) {
+        for (int bx = bx0; bx <= bx1; ++bx) active[by * blocks_x + bx] = true;
+      }
+    }
+  }
+  const std::int32_t kFar = INT32_MAX;
+  const auto visit = [&](int x, int y, const int (*offsets)[2], int n_offsets) {
+    if (!active[(y >> kBlockShift) * blocks_x + (x >> kBlockShift)]) return;
+    std::uint16_t& cur = nearest_[static_cast<std::size_t>(y * w_ + x)];
+    std::int32_t cur_d = cur == kNoCell ? kFar : Dist2(cells_[cur], x, y);
+    if (cur_d == 0) return;  // an obstacle cell is its own nearest
+    for (int k = 0; k < n_offsets; ++k) {
+      const int nx = x + offsets[k][0], ny = y + offsets[k][1];
+      if (nx < 0 || ny < 0 || nx >= w_ || ny >= h_) continue;
+      const std::uint16_t cand = nearest_[static_cast<std::size_t>(ny * w_ + nx)];
+      if (cand == kNoCell || cand == cur) continue;
+      const std::int32_t d = Dist2(cells_[cand], x, y);
+      if (d < cur_d) cur = cand, cur_d = d;
+    }
+  };
+  static constexpr int kForward[4][2] = {{-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+  static constexpr int kBackward[4][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}};
+  static constexpr int kRight[1][2] = {{1, 0}};
+  static constexpr int kLeft[1][2] = {{-1, 0}};
+  for (int y = 0; y < h_; ++y) {
+    for (int x = 0; x < w_; ++x) visit(x, y, kForward, 4);
+    for (int x = w_ - 1; x >= 0; --x) visit(x, y, kRight, 1);
+  }
+  for (int y = h_ - 1; y >= 0; --y) {
+    for (int x = w_ - 1; x >= 0; --x) visit(x, y, kBackward, 4);
+    for (int x = 0; x < w_; ++x) visit(x, y, kLeft, 1);
+  }
   for (int y = 0; y < h_; ++y) {
     for (int x = 0; x < w_; ++x) {
       std::uint16_t& k = nearest_[static_cast<std::size_t>(y * w_ + x)];
@@ -126,7 +156,7 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
     }
   }
   if (stats != nullptr) *stats = st;
-  return st.dropped_cells > 0 ? Status::kCapacityExceeded : Status::kOk;
+  return (st.dropped_cells > 0 || st.extraction.lines_full) ? Status::kCapacityExceeded : Status::kOk;
 }
 
 }  // namespace dpcr

@@ -38,7 +38,8 @@ class RegistrationReference {
   RegistrationReference& operator=(const RegistrationReference&) = delete;
 
   // Rebuilds from `grid` over `window` (clipped to max_w x max_h cells from window.min).
-  // kCapacityExceeded when obstacle cells were dropped (the reference is still usable).
+  // kCapacityExceeded when obstacle cells were dropped or lines did not fit (the cells beyond the
+  // line capacity stay clutter); the reference is still usable either way.
   Status Build(const TiledGrid& grid, CellBox window, const ReferenceConfig& config, ReferenceBuildStats* stats);
 
   // Index of the obstacle cell nearest to world point p, kNoCell outside the window or bound.

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/capacity.hpp"
 #include "registration_fixtures.hpp"
 
 using dpcr::Point2;
@@ -126,4 +127,26 @@ TEST_CASE("More obstacle cells than capacity are reported, not silently lost") {
   CHECK(f.Build(&stats) == dpcr::Status::kCapacityExceeded);
   CHECK(stats.dropped_cells > 0);
   CHECK(f.ref->cell_count() == 4096);
+}
+
+TEST_CASE("One vacuum-profile reference (256x256 window, 4096 cells, 512 lines) stays within 200 KiB") {
+  using VacuumReference = dpcr::RegistrationReferenceStorage<dpcr::VacuumProfile::kSubmapSideCells,
+                                                             dpcr::VacuumProfile::kSubmapSideCells, 4096,
+                                                             dpcr::VacuumProfile::kMaxLines>;
+  INFO("sizeof = " << sizeof(VacuumReference));
+  CHECK(sizeof(VacuumReference) <= 200u * 1024u);
+}
+
+TEST_CASE("More lines than capacity: the rest stay clutter and the build says so") {
+  GridFixture f;
+  const Point2 c0{1.02f, 1.03f}, c1{5.01f, 1.03f}, c2{5.01f, 4.02f}, c3{1.02f, 4.02f};
+  for (const Segment& w : {Segment{c0, c1}, Segment{c1, c2}, Segment{c2, c3}, Segment{c3, c0}}) f.Draw(w);
+  auto small = std::make_unique<dpcr::RegistrationReferenceStorage<256, 256, 4096, 2>>();
+  dpcr::ReferenceBuildStats stats;
+  CHECK(small->Build(*f.grid, f.grid->box(), dpcr::ReferenceConfig{}, &stats) == dpcr::Status::kCapacityExceeded);
+  CHECK(stats.extraction.lines_full);
+  CHECK(small->line_count() == 2);
+  int clutter = 0;
+  for (std::uint16_t i = 0; i < small->cell_count(); ++i) clutter += small->cell(i).line == dpcr::kNoLine;
+  CHECK(clutter > 100);
 }

@@ -150,3 +150,74 @@ TEST_CASE("A correction beyond what odometry makes plausible is rejected") {
   CHECK(PosErr(r.pose, truth) < 0.01f);
   CHECK(r.verdict == dpcr::Status::kRejected);
 }
+
+TEST_CASE("Second registration: obstacle cells of one grid against the lines of another") {
+  // Grid A (the "regional map") from scans at true poses; grid B (the "submap") from other scans,
+  // built in a frame rotated and shifted by a known transform; B's obstacle cells are the target.
+  const auto walls = LRoom();
+  GridFixture a, b;
+  const Pose2 b_in_a{0.12f, -0.08f, 3.0f * kDeg};  // the submap frame in the regional map frame
+  for (int k = 0; k < 8; ++k) {
+    const Pose2 p{3.0f + 0.2f * static_cast<float>(k), 2.5f + 0.1f * static_cast<float>(k), 0.1f * static_cast<float>(k)};
+    dpcr_test::InsertScan(a, dpcr_test::SimulateScan(walls, p, 450, 0.01f, 30u + static_cast<unsigned>(k)), p,
+                          static_cast<std::uint32_t>(k + 1));
+    const Pose2 q{p.x + 0.1f, p.y + 0.15f, p.theta + 0.05f};
+    dpcr_test::InsertScan(b, dpcr_test::SimulateScan(walls, q, 450, 0.01f, 60u + static_cast<unsigned>(k)),
+                          b_in_a.Inverse() * q, static_cast<std::uint32_t>(k + 1));
+  }
+  REQUIRE(a.Build() == dpcr::Status::kOk);
+  REQUIRE(b.Build() == dpcr::Status::kOk);
+  std::vector<Point2> cells;
+  for (std::uint16_t i = 0; i < b.ref->cell_count(); ++i) cells.push_back(b.ref->CellCentre(i));
+  REQUIRE(cells.size() > 200);
+  const Pose2 start{0.0f, 0.0f, 0.0f};  // the drift estimate before the second registration
+  const auto r = dpcr::RegisterImproved(*a.ref, SpanOf(cells), start, nullptr, dpcr::PlicpConfig{});
+  INFO("pose " << r.pose.x << " " << r.pose.y << " " << r.pose.theta / kDeg << " deg, it " << r.iterations);
+  CHECK(r.verdict == dpcr::Status::kOk);
+  CHECK(PosErr(r.pose, b_in_a) < 0.02f);
+  CHECK(AngErr(r.pose, b_in_a) < 0.5f * kDeg);
+}
+
+TEST_CASE("Improved PLICP converges from 40 seeded random starts within 0.3 m and 10 deg") {
+  GridFixture f;
+  const auto walls = LRoom();
+  for (int k = 0; k < 10; ++k) {
+    const Pose2 p{3.0f + 0.1f * static_cast<float>(k), 2.5f + 0.05f * static_cast<float>(k), 0.05f * static_cast<float>(k)};
+    dpcr_test::InsertScan(f, dpcr_test::SimulateScan(walls, p, 450, 0.02f, 10u + static_cast<unsigned>(k)), p,
+                          static_cast<std::uint32_t>(k + 1));
+  }
+  REQUIRE(f.Build() == dpcr::Status::kOk);
+  const Pose2 truth{4.1f, 3.0f, 0.55f};
+  const auto scan = dpcr_test::SimulateScan(walls, truth, 450, 0.02f, 99);
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<float> t(-0.3f, 0.3f), a(-10.0f * kDeg, 10.0f * kDeg);
+  int ok = 0;
+  for (int i = 0; i < 40; ++i) {
+    const Pose2 start{truth.x + t(rng) / 1.4142f, truth.y + t(rng) / 1.4142f, truth.theta + a(rng)};
+    const auto r = dpcr::RegisterImproved(*f.ref, SpanOf(scan), start, nullptr, dpcr::PlicpConfig{});
+    ok += PosErr(r.pose, truth) < 0.02f && AngErr(r.pose, truth) < 0.5f * kDeg && r.verdict == dpcr::Status::kOk;
+  }
+  CHECK(ok == 40);
+}
+
+TEST_CASE("A reference of clutter only (pillars, no line features) still registers through the fallbacks") {
+  GridFixture f;
+  std::vector<Segment> pillars;  // 10 cm square pillars: too short to be lines
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const float x = 1.5f + 1.1f * static_cast<float>(i) + 0.013f, y = 1.5f + 1.3f * static_cast<float>(j) + 0.011f;
+      const Point2 a{x, y}, b{x + 0.1f, y}, c{x + 0.1f, y + 0.1f}, d{x, y + 0.1f};
+      pillars.insert(pillars.end(), {{a, b}, {b, c}, {c, d}, {d, a}});
+    }
+  }
+  for (const Segment& s : pillars) f.Draw(s);
+  REQUIRE(f.Build() == dpcr::Status::kOk);
+  CHECK(f.ref->line_count() == 0);
+  const Pose2 truth{3.9f, 3.4f, 0.2f};
+  const auto scan = dpcr_test::SimulateScan(pillars, truth, 450, 0.005f, 8);
+  const Pose2 start{truth.x + 0.06f, truth.y - 0.05f, truth.theta + 2.0f * kDeg};
+  const auto r = dpcr::RegisterImproved(*f.ref, SpanOf(scan), start, nullptr, dpcr::PlicpConfig{});
+  INFO("pose " << r.pose.x << " " << r.pose.y << " " << r.pose.theta << " it " << r.iterations);
+  CHECK(PosErr(r.pose, truth) < 0.03f);
+  CHECK(AngErr(r.pose, truth) < 1.0f * kDeg);
+}

@@ -14,7 +14,8 @@ int main(int argc, char** argv) {
   r->add_option("--intel-pairs", reg.intel_pairs, "scan pairs tried from the log");
   r->add_option("--seed", reg.seed, "random seed");
   r->add_option("--callgrind", reg.callgrind_count, "run N registrations of --method under callgrind toggles");
-  r->add_option("--method", reg.method, "improved | classic (callgrind mode)");
+  r->add_option("--method", reg.method, "improved | classic | build (callgrind mode; build = reference builds)");
+  r->add_option("--figure", reg.figure_path, "write a PNG of one registration (submap, lines, scans)");
   CLI11_PARSE(app, argc, argv);
   if (r->parsed()) return dpcr_bench::RunRegistrationBench(reg);
   return 0;

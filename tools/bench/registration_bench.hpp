@@ -16,6 +16,7 @@ struct RegistrationBenchOptions {
   // of them, each bracketed by collection toggles and followed by a stats dump.
   int callgrind_count = 0;
   std::string method = "improved";
+  std::string figure_path;  // PNG of one hall registration (empty: none)
 };
 
 int RunRegistrationBench(const RegistrationBenchOptions& options);
