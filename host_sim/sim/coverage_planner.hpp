@@ -1,0 +1,36 @@
+// A vacuum-like coverage plan over a World: per room, boustrophedon lanes along the room's
+// longer axis (spacing ~ robot width), then one wall-following loop inset from the room's
+// walls; rooms are joined by shortest paths (A* on a 5 cm grid) that pass through the doors.
+// Every point is checked against the obstacles inflated by the robot radius plus a margin, and
+// every straight leg of the returned polyline keeps at least the robot radius from all obstacles,
+// so a robot that turns in place at waypoints and drives straight between them never collides.
+// Lane pieces that are blocked or unreachable from the start are skipped.
+#pragma once
+
+#include <vector>
+
+#include "host_sim/sim/world_ray_caster.hpp"
+
+namespace dpcr::sim {
+
+struct PlannerConfig {
+  double robot_radius_m = 0.17;
+  double margin_m = 0.04;        // extra clearance for lanes and grid cells (covers the 5 cm grid's diagonal)
+  double lane_spacing_m = 0.30;  // ~ robot width: lanes overlap a little, as a vacuum's do
+  double grid_m = 0.05;
+  double min_piece_m = 0.10;     // shorter free lane pieces are not worth the detour
+  bool wall_following = true;
+};
+
+struct CoveragePlan {
+  // A closed tour: the last waypoint connects back to the first through a collision-free path
+  // included in the list, so the plan can be repeated.
+  std::vector<Vec2> waypoints;
+  int lane_pieces = 0;
+  int skipped_pieces = 0;  // blocked or unreachable lane pieces
+};
+
+// Plans from `start` (moved to the nearest free point if it is too close to an obstacle).
+CoveragePlan PlanCoverage(const WorldRayCaster& caster, const PlannerConfig& config, Vec2 start);
+
+}  // namespace dpcr::sim

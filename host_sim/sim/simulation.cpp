@@ -1,0 +1,88 @@
+#include "host_sim/sim/simulation.hpp"
+
+#include <cmath>
+
+namespace dpcr::sim {
+namespace {
+// Separate random streams, so changing one model's settings does not reshuffle the others.
+constexpr std::uint64_t kLidarStream = 0x9E3779B97F4A7C15ull;
+constexpr std::uint64_t kOdometryStream = 0xC2B2AE3D27D4EB4Full;
+}  // namespace
+
+Simulation::Simulation(const World& world, const SimConfig& config)
+    : config_(config),
+      caster_(world),
+      odometry_(config.odometry, config.seed ^ kOdometryStream),
+      lidar_rng_(config.seed ^ kLidarStream) {
+  if (config.lidar.beams_per_revolution < 1 ||
+      config.lidar.beams_per_revolution > static_cast<int>(SimScan{}.beams.capacity())) {
+    throw WorldError("lidar beams_per_revolution must be in [1, " + std::to_string(SimScan{}.beams.capacity()) + "]");
+  }
+  if (!(config.lidar.rate_hz > 0.0) || !(config.odometry.rate_hz > 0.0) || !(config.duration_min >= 0.0)) {
+    throw WorldError("lidar and odometry rates must be positive and the duration not negative");
+  }
+  const Pose2d start = world.has_start ? world.start : Pose2d{};
+  plan_ = PlanCoverage(caster_, config.planner, Vec2{start.x, start.y});
+  if (plan_.waypoints.empty()) throw WorldError(world.name + ": no free space for the robot near the start pose");
+  follower_ = std::make_unique<PlanFollower>(plan_.waypoints, start.theta, config.motion);
+  end_us_ = static_cast<std::int64_t>(std::llround(config.duration_min * 60e6));
+  period_us_ = static_cast<std::int64_t>(std::llround(1e6 / config.lidar.rate_hz));
+  odom_period_us_ = static_cast<std::int64_t>(std::llround(1e6 / config.odometry.rate_hz));
+  pending_scan_.type = SimEventType::kScan;
+}
+
+Simulation::~Simulation() = default;
+
+std::int64_t Simulation::BeamTime(std::int64_t k) const {
+  const std::int64_t n = config_.lidar.beams_per_revolution;
+  return (k / n) * period_us_ + (k % n) * period_us_ / n;
+}
+
+bool Simulation::Step(SimEvent* out) {
+  const LidarConfig& lidar = config_.lidar;
+  const std::int64_t n = lidar.beams_per_revolution;
+  for (;;) {
+    const std::int64_t beam_us = BeamTime(next_beam_);
+    if (next_odom_us_ <= beam_us) {
+      if (next_odom_us_ > end_us_) return false;
+      const std::int64_t t = next_odom_us_;
+      next_odom_us_ += odom_period_us_;
+      follower_->AdvanceTo(static_cast<double>(t) * 1e-6);
+      const double half_track = 0.5 * config_.odometry.track_m;
+      const double d = follower_->distance_m(), r = follower_->rotation_rad();
+      const double yaw_rate = (r - last_rotation_) * config_.odometry.rate_hz;
+      last_rotation_ = r;
+      out->type = SimEventType::kOdometry;
+      out->time_us = t;
+      odometry_.Sample(t, d - half_track * r, d + half_track * r, t == 0 ? 0.0 : yaw_rate, &out->odometry, &out->ticks);
+      out->truth = follower_->pose();
+      out->sensor_truth = out->truth * lidar.mount;
+      return true;
+    }
+    if (beam_us > end_us_) return false;
+    const std::int64_t i = next_beam_ % n;
+    ++next_beam_;
+    follower_->AdvanceTo(static_cast<double>(beam_us) * 1e-6);
+    const Pose2d sensor = follower_->pose() * lidar.mount;
+    SimScan& scan = pending_scan_.scan;
+    if (i == 0) {
+      scan.beams.clear();
+      scan.stamp_us = beam_us;
+      pending_scan_.truth = follower_->pose();
+      pending_scan_.sensor_truth = sensor;
+    }
+    const double angle = 2.0 * kPiD * static_cast<double>(i) / static_cast<double>(n);
+    Beam beam;
+    beam.angle_rad = NormalizeAngle(static_cast<float>(angle));
+    beam.range_m = SimulateBeam(caster_, lidar, sensor, angle, &lidar_rng_);
+    beam.offset_us = static_cast<std::int32_t>(beam_us - scan.stamp_us);
+    (void)scan.beams.push_back(beam);  // capacity checked in the constructor
+    if (i == n - 1) {
+      pending_scan_.time_us = beam_us;
+      *out = pending_scan_;
+      return true;
+    }
+  }
+}
+
+}  // namespace dpcr::sim

@@ -1,0 +1,79 @@
+// The simulator the apps drive: a robot covering a World, producing a time-ordered stream of
+// events — 100 Hz wheel odometry (+ raw ticks, + gyro) and 10 Hz lidar revolutions whose beams
+// are each cast from the pose at the beam's own time — each with its ground-truth pose.
+// Deterministic: the same World, SimConfig and seed give the same stream.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "core/capacity.hpp"
+#include "core/scan.hpp"
+#include "host_sim/sim/coverage_planner.hpp"
+#include "host_sim/sim/motion.hpp"
+#include "host_sim/sim/sensors.hpp"
+
+namespace dpcr::sim {
+
+struct SimConfig {
+  std::uint64_t seed = 1;
+  double duration_min = 35.0;
+  PlannerConfig planner;
+  MotionLimits motion;
+  LidarConfig lidar;
+  OdometryConfig odometry;
+};
+
+using SimScan = Scan<VacuumProfile::kMaxBeams>;
+
+enum class SimEventType { kOdometry, kScan };
+
+struct SimEvent {
+  SimEventType type = SimEventType::kOdometry;
+  std::int64_t time_us = 0;  // when the event becomes available (a scan: its last beam's time)
+  // kOdometry: stamp == time_us; ground truth is the robot pose at the stamp.
+  OdometrySample odometry;
+  WheelTicks ticks;
+  // kScan: stamp = first beam's time; beams in the sensor frame, range 0 = no return.
+  SimScan scan;
+  Pose2d truth;         // robot pose in the world at the odometry stamp / scan stamp
+  Pose2d sensor_truth;  // the sensor's pose at the same time (truth * mount)
+};
+
+class Simulation {
+ public:
+  // Throws WorldError if the config is unusable (e.g. more beams than a Scan holds).
+  Simulation(const World& world, const SimConfig& config);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  // Next event in time order; false once the duration is over.
+  bool Step(SimEvent* out);
+
+  const CoveragePlan& plan() const { return plan_; }
+  const WheelCalibration& believed_calibration() const { return odometry_.believed(); }
+  int slip_events() const { return odometry_.slip_events(); }
+  int tours_completed() const { return follower_->tours_completed(); }
+  // The robot pose at the current simulation time (after the last Step).
+  const Pose2d& current_pose() const { return follower_->pose(); }
+
+ private:
+  std::int64_t BeamTime(std::int64_t k) const;
+
+  SimConfig config_;
+  WorldRayCaster caster_;
+  CoveragePlan plan_;
+  std::unique_ptr<PlanFollower> follower_;
+  WheelOdometryModel odometry_;
+  std::mt19937_64 lidar_rng_;
+  std::int64_t end_us_ = 0;
+  std::int64_t period_us_ = 0;
+  std::int64_t odom_period_us_ = 0;
+  std::int64_t next_odom_us_ = 0;
+  std::int64_t next_beam_ = 0;  // global beam index
+  double last_rotation_ = 0.0;
+  SimEvent pending_scan_;       // the revolution being built
+};
+
+}  // namespace dpcr::sim
