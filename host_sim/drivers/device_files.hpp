@@ -21,9 +21,10 @@ namespace dpcr {
 using DeviceScan = Scan<VacuumProfile::kMaxBeams>;
 
 struct DeviceFilesConfig {
-  // Device 0 deg = scan angle -pi, sweeping counter-clockwise: matches a simulator whose beams
-  // run from -pi to pi. A real upright LD06 needs angle_sign = -1 (clockwise).
-  LidarAngleMap angle_map{1.0f, -3.14159265358979323846f};
+  // Device 0 deg = scan angle 0, sweeping counter-clockwise: matches dpcr-sim, whose
+  // revolutions start at angle 0, so a device revolution is the simulator's revolution.
+  // A real upright LD06 needs angle_sign = -1 (clockwise).
+  LidarAngleMap angle_map{1.0f, 0.0f};
   DiffDriveConfig wheels{0.035f, 0.235f, 4096.0f};
   std::string can_interface = "can0";
 };

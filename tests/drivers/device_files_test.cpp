@@ -36,7 +36,7 @@ Run MakeRun() {
     scan->stamp_us = t0 + 5000 + k * 100000;
     for (int i = 0; i < 450; ++i) {
       dpcr::Beam b;
-      b.angle_rad = -dpcr::kPi + 2 * dpcr::kPi * static_cast<float>(i) / 450.0f;
+      b.angle_rad = dpcr::NormalizeAngle(2 * dpcr::kPi * static_cast<float>(i) / 450.0f);  // dpcr-sim order: from 0
       b.range_m = 1.0f + 0.5f * std::sin(static_cast<float>(i + k) * 0.1f);
       b.offset_us = static_cast<std::int32_t>(std::lround(100000.0 * i / 450));
       REQUIRE(scan->beams.push_back(b) == dpcr::Status::kOk);
