@@ -11,7 +11,8 @@ constexpr std::uint64_t kOdometryStream = 0xC2B2AE3D27D4EB4Full;
 
 Simulation::Simulation(const World& world, const SimConfig& config)
     : config_(config),
-      caster_(world),
+      world_(world),
+      caster_(world_),
       odometry_(config.odometry, config.seed ^ kOdometryStream),
       lidar_rng_(config.seed ^ kLidarStream) {
   if (config.lidar.beams_per_revolution < 1 ||
