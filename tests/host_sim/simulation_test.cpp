@@ -256,3 +256,25 @@ TEST_CASE("Built-in worlds: 35-minute runs never collide and cover the rooms", "
     CHECK(coverage >= 0.70);
   }
 }
+
+TEST_CASE("A PGM floor plan without a start pose can be simulated", "[sim]") {
+  // 3 m x 2 m room at 10 cm per pixel: a one-pixel dark frame.
+  const int w = 30, h = 20;
+  std::string pgm = "P5 " + std::to_string(w) + " " + std::to_string(h) + " 255\n";
+  for (int row = 0; row < h; ++row) {
+    for (int col = 0; col < w; ++col) pgm.push_back(row == 0 || col == 0 || row == h - 1 || col == w - 1 ? '\0' : '\xff');
+  }
+  const World world = ParsePgmWorld(pgm, "frame.pgm", 0.1, Vec2{-1.0, -1.0});
+  SimConfig config;
+  config.duration_min = 4.0;
+  const RunResult r = Run(world, config);
+  CHECK(r.scans == 2400);
+  CHECK(r.min_clearance_m >= config.planner.robot_radius_m);
+  Pose2d lo{1e9, 1e9, 0}, hi{-1e9, -1e9, 0};
+  for (const Pose2d& p : r.truth) {
+    lo = Pose2d{std::min(lo.x, p.x), std::min(lo.y, p.y), 0};
+    hi = Pose2d{std::max(hi.x, p.x), std::max(hi.y, p.y), 0};
+  }
+  CHECK(hi.x - lo.x > 2.0);  // it covers the room, not just sits at the start
+  CHECK(hi.y - lo.y > 1.2);
+}
