@@ -156,6 +156,21 @@ std::vector<std::pair<Vec2, Vec2>> FreePieces(const FreeGrid& g, Vec2 p0, Vec2 p
 
 }  // namespace
 
+bool FindFreePoint(const WorldRayCaster& caster, const PlannerConfig& config, Vec2 near, Vec2* out) {
+  const FreeGrid g(caster, config);
+  double best = 1e18;
+  for (int j = 0; j < g.ny(); ++j) {
+    for (int i = 0; i < g.nx(); ++i) {
+      const double d = Norm(g.Centre(i, j) - near);
+      if (d < best && g.CellFree(i, j)) {
+        best = d;
+        *out = g.Centre(i, j);
+      }
+    }
+  }
+  return best < 1e17;
+}
+
 CoveragePlan PlanCoverage(const WorldRayCaster& caster, const PlannerConfig& config, Vec2 start) {
   const FreeGrid g(caster, config);
   CoveragePlan plan;
@@ -175,8 +190,19 @@ CoveragePlan PlanCoverage(const WorldRayCaster& caster, const PlannerConfig& con
     plan.waypoints.push_back(b);
     ++plan.lane_pieces;
   };
-  const double inset = g.Inflation() + 0.005;
-  for (const Room& room : caster.world().rooms) {
+  for (const Room& declared : caster.world().rooms) {
+    // Lanes span the free (inflated) part of the room: the bounding box of its free cells, so
+    // rooms drawn to the outside of thick walls (PGM plans) still get lanes along their walls.
+    Room room{declared.name, 1e18, 1e18, -1e18, -1e18};
+    for (int j = 0; j < g.ny(); ++j) {
+      for (int i = 0; i < g.nx(); ++i) {
+        const Vec2 c = g.Centre(i, j);
+        if (!declared.Contains(c) || !g.CellFree(i, j)) continue;
+        room = Room{declared.name, std::min(room.xmin, c.x), std::min(room.ymin, c.y), std::max(room.xmax, c.x),
+                    std::max(room.ymax, c.y)};
+      }
+    }
+    const double inset = 0.0;
     const bool along_x = room.xmax - room.xmin >= room.ymax - room.ymin;
     const double lo = (along_x ? room.ymin : room.xmin) + inset;
     const double hi = (along_x ? room.ymax : room.xmax) - inset;

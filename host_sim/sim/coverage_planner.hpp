@@ -30,6 +30,9 @@ struct CoveragePlan {
   int skipped_pieces = 0;  // blocked or unreachable lane pieces
 };
 
+// The free point (robot fits with margin) nearest to `near` on a 5 cm lattice; false if none.
+bool FindFreePoint(const WorldRayCaster& caster, const PlannerConfig& config, Vec2 near, Vec2* out);
+
 // Plans from `start` (moved to the nearest free point if it is too close to an obstacle).
 CoveragePlan PlanCoverage(const WorldRayCaster& caster, const PlannerConfig& config, Vec2 start);
 

@@ -11,7 +11,8 @@ constexpr std::uint64_t kOdometryStream = 0xC2B2AE3D27D4EB4Full;
 
 Simulation::Simulation(const World& world, const SimConfig& config)
     : config_(config),
-      caster_(world),
+      world_(world),
+      caster_(world_),
       odometry_(config.odometry, config.seed ^ kOdometryStream),
       lidar_rng_(config.seed ^ kLidarStream) {
   if (config.lidar.beams_per_revolution < 1 ||
@@ -21,7 +22,16 @@ Simulation::Simulation(const World& world, const SimConfig& config)
   if (!(config.lidar.rate_hz > 0.0) || !(config.odometry.rate_hz > 0.0) || !(config.duration_min >= 0.0)) {
     throw WorldError("lidar and odometry rates must be positive and the duration not negative");
   }
-  const Pose2d start = world.has_start ? world.start : Pose2d{};
+  Pose2d start = world.start;
+  if (!world.has_start) {
+    // No start given (PGM plans): the free point nearest the first room's centre.
+    const Room& r = world.rooms.empty() ? Room{} : world.rooms.front();
+    Vec2 p;
+    if (!FindFreePoint(caster_, config.planner, Vec2{0.5 * (r.xmin + r.xmax), 0.5 * (r.ymin + r.ymax)}, &p)) {
+      throw WorldError(world.name + ": no free space for the robot");
+    }
+    start = Pose2d{p.x, p.y, 0.0};
+  }
   plan_ = PlanCoverage(caster_, config.planner, Vec2{start.x, start.y});
   if (plan_.waypoints.empty()) throw WorldError(world.name + ": no free space for the robot near the start pose");
   follower_ = std::make_unique<PlanFollower>(plan_.waypoints, start.theta, config.motion);

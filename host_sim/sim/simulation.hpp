@@ -42,7 +42,7 @@ struct SimEvent {
 
 class Simulation {
  public:
-  // Throws WorldError if the config is unusable (e.g. more beams than a Scan holds).
+  // Copies the world. Throws WorldError if the config is unusable (e.g. more beams than a Scan holds).
   Simulation(const World& world, const SimConfig& config);
   ~Simulation();
   Simulation(const Simulation&) = delete;
@@ -62,6 +62,7 @@ class Simulation {
   std::int64_t BeamTime(std::int64_t k) const;
 
   SimConfig config_;
+  World world_;  // a copy: the caster points into it, so temporaries are safe to pass
   WorldRayCaster caster_;
   CoveragePlan plan_;
   std::unique_ptr<PlanFollower> follower_;

@@ -17,6 +17,7 @@ struct RayHit {
 
 class WorldRayCaster {
  public:
+  // Keeps a pointer to `world`, which must outlive the caster.
   explicit WorldRayCaster(const World& world, double bucket_m = 0.5);
 
   // First obstacle along the ray from `origin` at `angle_rad` within max_range_m.
