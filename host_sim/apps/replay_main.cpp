@@ -24,6 +24,7 @@ struct Options {
   std::string candump;
   std::string lidar = "ld06";
   float angle_sign = 1.0f;
+  bool odometry_only = false;
   std::string relations;
   std::string out = "out/replay";
   std::string profile;  // default: building for CARMEN logs, vacuum for device files
@@ -70,6 +71,7 @@ int ReplayCarmen(const Options& opt) {
         // PARAM lines come first in CARMEN logs; the mount is fixed at the first record.
         dpcr::MapperConfig config;
         config.lidar.max_range_m = opt.max_range_m;
+        config.front_end.enable_registration = !opt.odometry_only;
         const float offset = std::isnan(opt.laser_offset_m) ? reader.front_laser_offset_m() : opt.laser_offset_m;
         config.lidar.mount = dpcr::Pose2{offset, 0.0f, 0.0f};
         if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
@@ -146,7 +148,9 @@ int ReplayDevice(const Options& opt) {
   dpcr::DeviceReplay replay(files, lidar);
   std::string error;
   if (!replay.Open(opt.uart, opt.candump, &error)) throw std::runtime_error(error);
-  if (mapper.Init(dpcr::MapperConfig{}) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
+  dpcr::MapperConfig config;
+  config.front_end.enable_registration = !opt.odometry_only;
+  if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
   const auto start = Clock::now();
   dpcr::output::RunRecord run;
   for (auto e = replay.Next(); e != dpcr::DeviceReplay::Event::kEnd; e = replay.Next()) {
@@ -197,6 +201,7 @@ int main(int argc, char** argv) {
   app.add_option("--lidar", opt.lidar, "lidar protocol in the UART capture")->check(CLI::IsMember({"ld06", "xv11"}))->capture_default_str();
   app.add_option("--angle-sign", opt.angle_sign, "+1: device angles counter-clockwise (dpcr-sim), -1: clockwise (an upright LD06)")
       ->check(CLI::IsMember({1.0f, -1.0f}))->capture_default_str();
+  app.add_flag("--odometry-only", opt.odometry_only, "map with dead reckoning only (for comparison)");
   CLI11_PARSE(app, argc, argv);
   if (opt.carmen.empty() == opt.uart.empty()) {
     std::fprintf(stderr, "dpcr-replay: give either --carmen FILE or --uart FILE [--candump FILE]\n%s", app.help().c_str());
