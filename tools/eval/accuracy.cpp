@@ -116,12 +116,7 @@ std::vector<Relation> ReadRelationsFile(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot open");
   std::vector<Relation> out;
-  std::string text;
-  long line = 0;
-  while (std::getline(in, text)) {
-    ++line;
-    const std::size_t first = text.find_first_not_of(" \t\r");
-    if (first == std::string::npos || text[first] == '#') continue;
+  ForEachDataLine(in, [&](long line, const std::string& text) {
     std::istringstream s(text);
     std::string t1, t2;
     double x, y, z, roll, pitch, yaw;
@@ -137,7 +132,7 @@ std::vector<Relation> ReadRelationsFile(const std::string& path) {
     }
     r.delta = dpcr::Pose2{static_cast<float>(x), static_cast<float>(y), static_cast<float>(yaw)};
     out.push_back(r);
-  }
+  });
   return out;
 }
 

@@ -31,12 +31,7 @@ void WriteTum(std::ostream& out, const Trajectory& trajectory) {
 
 Trajectory ReadTum(std::istream& in) {
   Trajectory out;
-  std::string text;
-  long line = 0;
-  while (std::getline(in, text)) {
-    ++line;
-    const std::size_t first = text.find_first_not_of(" \t\r");
-    if (first == std::string::npos || text[first] == '#') continue;
+  ForEachDataLine(in, [&out](long line, const std::string& text) {
     std::istringstream s(text);
     std::string stamp;
     double x, y, z, qx, qy, qz, qw;
@@ -54,7 +49,7 @@ Trajectory ReadTum(std::istream& in) {
     // Yaw of a quaternion; roll and pitch are ignored (a 2D trajectory has none).
     p.pose.theta = static_cast<float>(std::atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz)));
     out.push_back(p);
-  }
+  });
   return out;
 }
 

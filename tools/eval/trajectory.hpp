@@ -18,6 +18,20 @@ struct StampedPose {
 
 using Trajectory = std::vector<StampedPose>;
 
+// Calls visit(line_number, text) for each line that is neither blank nor a '#' comment
+// (the convention of TUM and relations files).
+template <typename Visitor>
+void ForEachDataLine(std::istream& in, Visitor&& visit) {
+  std::string text;
+  long line = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    const std::size_t first = text.find_first_not_of(" \t\r");
+    if (first == std::string::npos || text[first] == '#') continue;
+    visit(line, text);
+  }
+}
+
 // "976052857.337530": seconds with exactly six decimals, so that stamps round-trip exactly.
 std::string FormatStamp(std::int64_t stamp_us);
 
