@@ -40,13 +40,15 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
   }
   // 2. Misses along every ray, each cell once. The box is convex and rays start inside it:
   // a ray that leaves it never comes back, so tracing stops there (one out_of_box per ray).
-  auto miss = [&](CellIndex c) {
-    const Status s = grid.Update(c, config.miss_delta, config.clamp_min, config.clamp_max, stamp);
-    Count(s, &stats, &stats.miss_cells);
-    return s != Status::kOutOfBounds;
+  const auto miss = [&](const Point2& p) {
+    const TiledGrid::SegmentStats s =
+        grid.UpdateSegment(start, CellOf(p.x, p.y, res), config.miss_delta, config.clamp_min, config.clamp_max, stamp);
+    stats.miss_cells += s.applied;
+    stats.out_of_box += s.out_of_box;
+    stats.dropped_pool_full += s.dropped_pool_full;
   };
-  for (const Point2& p : hits) TraceCells(start, CellOf(p.x, p.y, res), miss);
-  for (const Point2& p : free_ends) TraceCells(start, CellOf(p.x, p.y, res), miss);
+  for (const Point2& p : hits) miss(p);
+  for (const Point2& p : free_ends) miss(p);
   // 3. The reserved hits (stamp 0: already marked for this scan).
   for (std::size_t i = 0; i < reserved; ++i) {
     Count(grid.Update(scratch[i], config.hit_delta, config.clamp_min, config.clamp_max, 0), &stats,
