@@ -13,7 +13,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   }
   config_ = config;
   for (int i = 0; i < region_count_; ++i) s_.regions[static_cast<std::size_t>(i)].grid->Reset();
-  s_.submap->Reset(config.grid, config.front_end.submap_scans);
+  s_.submap->Reset(config.grid, config.front_end.submap_scans, config.front_end.submap_miss_range_m);
   status_ = MapperStatus::kWaitingForData;
   counters_ = MapperCounters{};
   fe_counters_ = FrontEndCounters{};

@@ -24,6 +24,12 @@ int main(int argc, char** argv) {
   m->add_option("--max-range", map.max_range_m, "ignore returns farther than this (m)")->capture_default_str();
   m->add_option("--callgrind-stride", map.callgrind_stride,
                 "count every k-th AddScan under callgrind toggles and dump after it (run under callgrind)");
+  m->add_option("--submap-miss-range", map.submap_miss_range_m, "override FrontEndConfig::submap_miss_range_m");
+  m->add_option("--reference-max-distance", map.reference_max_distance_m, "override ReferenceConfig::max_distance_m");
+  m->add_option("--k1", map.k1, "override K1 (submap line period)");
+  m->add_option("--k2", map.k2, "override K2 (region line period)");
+  m->add_option("--ks", map.ks, "override Ks (second registration period)");
+  m->add_option("--n", map.n, "override N (submap scans)");
   m->add_option("--trajectory", map.trajectory_path, "write the estimated trajectory (TUM)");
   CLI11_PARSE(app, argc, argv);
   if (r->parsed()) return dpcr_bench::RunRegistrationBench(reg);

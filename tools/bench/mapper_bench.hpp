@@ -13,6 +13,10 @@ struct MapperBenchOptions {
   // Callgrind mode (> 0): every k-th scan's AddScan is bracketed by collection toggles and
   // followed by a stats dump (run under valgrind --tool=callgrind --collect-atstart=no).
   int callgrind_stride = 0;
+  // Schedule / submap overrides (negative: the MapperConfig default).
+  float submap_miss_range_m = -1.0f;
+  float reference_max_distance_m = -1.0f;
+  int k1 = -1, k2 = -1, ks = -1, n = -1;
   std::string trajectory_path;  // TUM output of the run (empty: none)
 };
 
