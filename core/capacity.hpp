@@ -34,6 +34,15 @@ struct VacuumProfile {
   // Obstacle cells a registration reference holds (a 12.8 m window of walls and furniture).
   static constexpr int kReferenceCells = 4096;
   static constexpr int kMaxGraphEdges = 256;
+  // Instruction budgets per scan, by stage (mean over the fixed run of tests/budget/stage_cost.sh,
+  // counted by callgrind on x86-64, ~1.3x the count measured when set): prediction (odometry +
+  // de-skew), first registration, second registration, insertion (submap + regional map), line
+  // extraction (reference builds: obstacle cells, lines, distance transform).
+  static constexpr std::uint64_t kBudgetPredictionInstr = 80'000;
+  static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 290'000;
+  static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 50'000;
+  static constexpr std::uint64_t kBudgetInsertionInstr = 4'100'000;
+  static constexpr std::uint64_t kBudgetLineExtractionInstr = 1'600'000;
 };
 
 // The public benchmark logs (intel.clf: a 30 m x 30 m lab, ~900 m² with long corridors):
@@ -50,6 +59,15 @@ struct BuildingProfile {
   static constexpr int kMaxLines = 512;
   static constexpr int kReferenceCells = 4096;
   static constexpr int kMaxGraphEdges = 1024;
+  // Instruction budgets per scan, by stage (mean over the fixed run of tests/budget/stage_cost.sh,
+  // counted by callgrind on x86-64, ~1.3x the count measured when set): prediction (odometry +
+  // de-skew), first registration, second registration, insertion (submap + regional map), line
+  // extraction (reference builds: obstacle cells, lines, distance transform).
+  static constexpr std::uint64_t kBudgetPredictionInstr = 30'000;
+  static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 180'000;
+  static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 40'000;
+  static constexpr std::uint64_t kBudgetInsertionInstr = 1'000'000;
+  static constexpr std::uint64_t kBudgetLineExtractionInstr = 1'200'000;
 };
 
 // A small profile for tests: full pools are easy to reach.
@@ -65,6 +83,15 @@ struct TinyProfile {
   static constexpr int kMaxLines = 128;
   static constexpr int kReferenceCells = 2048;
   static constexpr int kMaxGraphEdges = 16;
+  // Instruction budgets per scan, by stage (mean over the fixed run of tests/budget/stage_cost.sh,
+  // counted by callgrind on x86-64, ~1.3x the count measured when set): prediction (odometry +
+  // de-skew), first registration, second registration, insertion (submap + regional map), line
+  // extraction (reference builds: obstacle cells, lines, distance transform).
+  static constexpr std::uint64_t kBudgetPredictionInstr = 45'000;
+  static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 130'000;
+  static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 21'000;
+  static constexpr std::uint64_t kBudgetInsertionInstr = 1'700'000;
+  static constexpr std::uint64_t kBudgetLineExtractionInstr = 580'000;
 };
 
 }  // namespace dpcr

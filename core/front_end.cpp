@@ -13,7 +13,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   }
   config_ = config;
   for (int i = 0; i < region_count_; ++i) s_.regions[static_cast<std::size_t>(i)].grid->Reset();
-  s_.submap->Reset(config.grid, config.front_end.submap_scans);
+  s_.submap->Reset(config.grid, config.front_end.submap_scans, config.front_end.submap_miss_range_m);
   status_ = MapperStatus::kWaitingForData;
   counters_ = MapperCounters{};
   fe_counters_ = FrontEndCounters{};
@@ -62,6 +62,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   }
   // 2. First registration against the submap (not for the very first scan: nothing to match).
   if (config_.front_end.enable_registration && s_.submap->size() > 0) {
+    RebuildSubmapReferenceIfDue();
     RegisterScan(projected.hits, predicted);
   } else {
     pose_ = predicted;
@@ -87,7 +88,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   return Status::kOk;
 }
 
-void FrontEnd::RegisterScan(std::size_t hits, const Pose2& predicted) {
+void FrontEnd::RebuildSubmapReferenceIfDue() {
   const FrontEndConfig& f = config_.front_end;
   if (scans_since_submap_lines_ >= static_cast<std::uint32_t>(f.submap_line_period) ||
       fe_counters_.submap_line_builds == 0) {
@@ -97,6 +98,10 @@ void FrontEnd::RegisterScan(std::size_t hits, const Pose2& predicted) {
     ++fe_counters_.submap_line_builds;
     scans_since_submap_lines_ = 0;
   }
+}
+
+void FrontEnd::RegisterScan(std::size_t hits, const Pose2& predicted) {
+  const FrontEndConfig& f = config_.front_end;
   const PosePrior prior{predicted, f.prior_info_xy, f.prior_info_theta};
   const RegistrationResult r =
       RegisterImproved(*s_.submap_reference, Span<const Point2>(s_.hits.data(), hits), predicted, &prior, f.first_registration);
@@ -176,6 +181,11 @@ void FrontEnd::SecondRegistration() {
     reference_region_ = current_region_;
     scans_since_region_lines_ = 0;
   }
+  RegisterSubmap(r);
+}
+
+void FrontEnd::RegisterSubmap(RegionalMap& r) {
+  const FrontEndConfig& f = config_.front_end;
   // Target: the submap's obstacle cells (from its reference, rebuilt every K1 scans), evenly thinned.
   const RegistrationReference& sub = *s_.submap_reference;
   const std::size_t n = sub.cell_count();

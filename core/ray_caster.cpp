@@ -1,5 +1,7 @@
 #include "core/ray_caster.hpp"
 
+#include <cmath>
+
 #include "core/assert.hpp"
 
 namespace dpcr {
@@ -19,7 +21,7 @@ void Count(Status s, InsertionStats* stats, int* applied) {
 
 InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hits,
                           Span<const Point2> free_ends, const GridConfig& config,
-                          std::uint32_t stamp, Span<CellIndex> scratch) {
+                          std::uint32_t stamp, Span<CellIndex> scratch, float miss_range_m) {
   DPCR_ASSERT(stamp != 0 && scratch.size() >= hits.size());
   InsertionStats stats;
   const float res = config.resolution_m;
@@ -40,13 +42,26 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
   }
   // 2. Misses along every ray, each cell once. The box is convex and rays start inside it:
   // a ray that leaves it never comes back, so tracing stops there (one out_of_box per ray).
-  auto miss = [&](CellIndex c) {
-    const Status s = grid.Update(c, config.miss_delta, config.clamp_min, config.clamp_max, stamp);
-    Count(s, &stats, &stats.miss_cells);
-    return s != Status::kOutOfBounds;
+  const auto miss = [&](CellIndex from, const Point2& p) {
+    const TiledGrid::SegmentStats s =
+        grid.UpdateSegment(from, CellOf(p.x, p.y, res), config.miss_delta, config.clamp_min, config.clamp_max, stamp);
+    stats.miss_cells += s.applied;
+    stats.out_of_box += s.out_of_box;
+    stats.dropped_pool_full += s.dropped_pool_full;
   };
-  for (const Point2& p : hits) TraceCells(start, CellOf(p.x, p.y, res), miss);
-  for (const Point2& p : free_ends) TraceCells(start, CellOf(p.x, p.y, res), miss);
+  const float range2 = miss_range_m * miss_range_m;
+  for (const Point2& p : hits) {
+    const float dx = p.x - origin.x, dy = p.y - origin.y;
+    const float d2 = dx * dx + dy * dy;
+    if (miss_range_m <= 0.0f || d2 <= range2) {
+      miss(start, p);
+    } else {
+      // Start miss_range_m before the hit (a cell of the full ray's neighbourhood, not always on it).
+      const float k = 1.0f - miss_range_m / std::sqrt(d2);
+      miss(CellOf(origin.x + k * dx, origin.y + k * dy, res), p);
+    }
+  }
+  for (const Point2& p : free_ends) miss(start, p);
   // 3. The reserved hits (stamp 0: already marked for this scan).
   for (std::size_t i = 0; i < reserved; ++i) {
     Count(grid.Update(scratch[i], config.hit_delta, config.clamp_min, config.clamp_max, 0), &stats,

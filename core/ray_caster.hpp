@@ -24,9 +24,10 @@ struct InsertionStats {
 // `hits`: endpoints of beams with a return; `free_ends`: where beams without a return stop
 // clearing. Both in the grid's frame. `scratch` holds at least hits.size() cells.
 // `stamp` identifies the scan (non-zero, different from the previous scan's).
+// `miss_range_m` > 0: a ray to a hit clears only its last miss_range_m metres (free ends: whole).
 InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hits,
                           Span<const Point2> free_ends, const GridConfig& config,
-                          std::uint32_t stamp, Span<CellIndex> scratch);
+                          std::uint32_t stamp, Span<CellIndex> scratch, float miss_range_m = 0.0f);
 
 // Visits the cells of the segment a -> b (Bresenham), excluding b; stops early when the
 // visitor returns false. Header-only so the per-cell call inlines.

@@ -7,9 +7,9 @@
 namespace dpcr {
 namespace {
 
-// Distance-transform skip mask: up to 16 x 16 blocks of 32 cells (a 512-cell window); larger
+// Distance-transform skip mask: up to 32 x 32 blocks of 16 cells (a 512-cell window); larger
 // windows visit every cell.
-constexpr int kMaxBlocks = 256;
+constexpr int kMaxBlocks = 1024;
 
 std::int32_t Dist2(const ObstacleCell& c, int x, int y) {
   const std::int32_t dx = c.x - x, dy = c.y - y;
@@ -100,14 +100,14 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
   // distance transform, 8SSEDT-like; exact up to rare one-cell ties), then cut at the bound.
   // Per cell the current distance is computed once, and a neighbour holding the same seed is
   // skipped, so the usual cost is a few loads per cell.
-  // Blocks of 32x32 cells farther than the bound from every obstacle cell keep kNoCell and are
+  // Blocks of 16x16 cells farther than the bound from every obstacle cell keep kNoCell and are
   // not visited (any cell on the propagation path from a seed to a cell within the bound is itself
   // within the bound of that seed, so skipping them changes no answer).
   const float bound_cells = config.max_distance_m * inv_res_;
   const std::int32_t bound2 = static_cast<std::int32_t>(bound_cells * bound_cells);
   const int reach = static_cast<int>(bound_cells) + 1;
-  constexpr int kBlockShift = 5;
-  const int blocks_x = (w_ + 31) >> kBlockShift, blocks_y = (h_ + 31) >> kBlockShift;
+  constexpr int kBlockShift = 4;
+  const int blocks_x = (w_ + 15) >> kBlockShift, blocks_y = (h_ + 15) >> kBlockShift;
   bool active[kMaxBlocks];
   const bool use_blocks = blocks_x * blocks_y <= kMaxBlocks;
   for (bool& a : active) a = !use_blocks;

@@ -16,9 +16,10 @@ Submap::Submap(TiledGrid* grid, Span<Point2> point_store, Span<Pose2> poses, Spa
       scratch_(scratch),
       max_beams_(max_beams) {}
 
-void Submap::Reset(const GridConfig& grid_config, int scans) {
+void Submap::Reset(const GridConfig& grid_config, int scans, float miss_range_m) {
   DPCR_ASSERT(scans > 0 && static_cast<std::size_t>(scans) <= poses_.size());
   capacity_ = scans;
+  miss_range_m_ = miss_range_m;
   head_ = 0;
   size_ = 0;
   // Unclamped sums (see header): the clamp is only a guard at the ends of the int16 range.
@@ -46,7 +47,7 @@ InsertionStats Submap::Insert(const Pose2& pose, Span<const Point2> points, cons
   for (std::size_t i = 0; i < points.size(); ++i) transformed_[i] = pose.Apply(points[i]);
   if (++stamp_ == 0) stamp_ = 1;
   return InsertRays(*grid_, Point2{pose.x, pose.y}, Span<const Point2>(transformed_.data(), points.size()),
-                    Span<const Point2>(), config, stamp_, scratch_);
+                    Span<const Point2>(), config, stamp_, scratch_, miss_range_m_);
 }
 
 void Submap::RecentreOn(Point2 p) {

@@ -33,8 +33,9 @@ class Submap {
   Submap(const Submap&) = delete;
   Submap& operator=(const Submap&) = delete;
 
-  // Empties the submap; `scans` (N) scans at most are kept from now on.
-  void Reset(const GridConfig& grid_config, int scans);
+  // Empties the submap; `scans` (N) scans at most are kept from now on. `miss_range_m` > 0: each
+  // ray clears only its last miss_range_m metres before the hit (see InsertRays).
+  void Reset(const GridConfig& grid_config, int scans, float miss_range_m = 0.0f);
 
   // Adds a scan (robot-frame points, robot pose in the submap frame); when N scans are held the
   // oldest is removed first. Returns the insertion stats of the new scan.
@@ -66,6 +67,7 @@ class Submap {
   int size_ = 0;
   GridConfig add_config_;
   GridConfig remove_config_;
+  float miss_range_m_ = 0.0f;
   std::uint32_t stamp_ = 0;
   std::uint32_t recentres_ = 0;
 };

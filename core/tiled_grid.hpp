@@ -46,6 +46,19 @@ class TiledGrid {
   // cannot be allocated (the update is dropped), kOk otherwise (also when skipped as a repeat).
   Status Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::int16_t hi, std::uint32_t stamp);
 
+  // What UpdateSegment did: updates applied (repeats within the scan included), whether the
+  // segment left the box (tracing stops there), updates lost to a full pool.
+  struct SegmentStats {
+    int applied = 0;
+    int out_of_box = 0;
+    int dropped_pool_full = 0;
+  };
+  // Update(c, delta, lo, hi, stamp) for every cell of the Bresenham segment a -> b (b excluded,
+  // the cells of TraceCells in its order), stopping at the first cell outside the box. Same result
+  // as the per-cell calls; the tile is looked up once per tile crossed, not once per cell.
+  SegmentStats UpdateSegment(CellIndex a, CellIndex b, std::int16_t delta, std::int16_t lo, std::int16_t hi,
+                             std::uint32_t stamp);
+
   // True when the cell's tile has been allocated (the cell may still be unknown).
   bool HasTile(CellIndex c) const;
 

@@ -1,6 +1,7 @@
 // dpcr-bench: measurements that are not unit tests (docs/*.md hold their tables).
 #include <CLI/CLI.hpp>
 
+#include "tools/bench/mapper_bench.hpp"
 #include "tools/bench/registration_bench.hpp"
 
 int main(int argc, char** argv) {
@@ -16,7 +17,22 @@ int main(int argc, char** argv) {
   r->add_option("--callgrind", reg.callgrind_count, "run N registrations of --method under callgrind toggles");
   r->add_option("--method", reg.method, "improved | classic | build (callgrind mode; build = reference builds)");
   r->add_option("--figure", reg.figure_path, "write a PNG of one registration (submap, lines, scans)");
+  dpcr_bench::MapperBenchOptions map;
+  CLI::App* m = app.add_subcommand("mapper", "cost of Mapper::AddScan on a CARMEN log (parsed beforehand)");
+  m->add_option("--clf", map.clf_path, "CARMEN log")->capture_default_str();
+  m->add_option("--scans", map.scans, "the first N laser scans (0: all)");
+  m->add_option("--max-range", map.max_range_m, "ignore returns farther than this (m)")->capture_default_str();
+  m->add_option("--callgrind-stride", map.callgrind_stride,
+                "count every k-th AddScan under callgrind toggles and dump after it (run under callgrind)");
+  m->add_option("--submap-miss-range", map.submap_miss_range_m, "override FrontEndConfig::submap_miss_range_m");
+  m->add_option("--reference-max-distance", map.reference_max_distance_m, "override ReferenceConfig::max_distance_m");
+  m->add_option("--k1", map.k1, "override K1 (submap line period)");
+  m->add_option("--k2", map.k2, "override K2 (region line period)");
+  m->add_option("--ks", map.ks, "override Ks (second registration period)");
+  m->add_option("--n", map.n, "override N (submap scans)");
+  m->add_option("--trajectory", map.trajectory_path, "write the estimated trajectory (TUM)");
   CLI11_PARSE(app, argc, argv);
   if (r->parsed()) return dpcr_bench::RunRegistrationBench(reg);
+  if (m->parsed()) return dpcr_bench::RunMapperBench(map);
   return 0;
 }

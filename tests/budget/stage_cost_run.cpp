@@ -1,0 +1,95 @@
+// The fixed run of the per-stage instruction budgets (tests/budget/stage_cost.sh runs it under
+// callgrind): `building` = the first 300 scans of intel.clf (180 beams), `vacuum` and `tiny` =
+// 300 synthetic scans in an 8 m room (450 and 256 beams). Prints the scan count and the
+// profile's budgets (instructions per scan, core/capacity.hpp) for the script to compare.
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+#include "core/capacity.hpp"
+#include "core/mapper.hpp"
+#include "host_sim/carmen/carmen_reader.hpp"
+#include "tests/budget/synthetic_run.hpp"
+
+namespace {
+
+constexpr int kScans = 300;
+constexpr int kSkip = 77;  // ctest SKIP_RETURN_CODE
+
+template <class Profile>
+void PrintBudgets(int scans) {
+  std::printf("scans %d\n", scans);
+  std::printf("budget prediction %llu\n", static_cast<unsigned long long>(Profile::kBudgetPredictionInstr));
+  std::printf("budget first_registration %llu\n", static_cast<unsigned long long>(Profile::kBudgetFirstRegistrationInstr));
+  std::printf("budget second_registration %llu\n", static_cast<unsigned long long>(Profile::kBudgetSecondRegistrationInstr));
+  std::printf("budget insertion %llu\n", static_cast<unsigned long long>(Profile::kBudgetInsertionInstr));
+  std::printf("budget line_extraction %llu\n", static_cast<unsigned long long>(Profile::kBudgetLineExtractionInstr));
+}
+
+int RunIntel(const char* clf) {
+  using MapperType = dpcr::Mapper<dpcr::BuildingProfile>;
+  static MapperType mapper;
+  static MapperType::ScanType scan;
+  std::ifstream in(clf);
+  if (!in) {
+    std::printf("SKIP: %s not found (CI keeps shared/ beside the repository)\n", clf);
+    return kSkip;
+  }
+  dpcr::carmen::CarmenReader reader(in);
+  dpcr::carmen::Record rec;
+  bool configured = false;
+  int scans = 0;
+  while (scans < kScans && reader.Next(&rec)) {
+    if (!configured) {
+      dpcr::MapperConfig config;
+      config.lidar.max_range_m = 20.0f;  // as dpcr-replay
+      config.lidar.mount = dpcr::Pose2{reader.front_laser_offset_m(), 0.0f, 0.0f};
+      if (mapper.Init(config) != dpcr::Status::kOk) return 2;
+      configured = true;
+    }
+    if (rec.kind != dpcr::carmen::Record::Kind::kLaser) continue;
+    dpcr::OdometrySample s;
+    s.stamp_us = rec.laser.stamp_us;
+    s.pose = rec.laser.odom_pose;
+    mapper.AddOdometry(s);
+    scan.stamp_us = rec.laser.stamp_us;
+    scan.beams.clear();
+    for (std::size_t i = 0; i < rec.laser.ranges_m.size(); ++i) {
+      dpcr::Beam b;
+      b.angle_rad = rec.laser.angle_min_rad + static_cast<float>(i) * rec.laser.angle_increment_rad;
+      b.range_m = rec.laser.ranges_m[i];
+      (void)scan.beams.push_back(b);
+    }
+    (void)mapper.AddScan(scan);
+    ++scans;
+  }
+  PrintBudgets<dpcr::BuildingProfile>(scans);
+  return 0;
+}
+
+template <class Profile>
+int RunSynthetic(int beams) {
+  using MapperType = dpcr::Mapper<Profile>;
+  static MapperType mapper;
+  const dpcr::test::SyntheticRun<MapperType> run(8.0f, kScans, beams);
+  dpcr::MapperConfig config;
+  if (config.front_end.submap_scans > Profile::kSubmapMaxScans) config.front_end.submap_scans = Profile::kSubmapMaxScans;
+  if (mapper.Init(config) != dpcr::Status::kOk) return 2;
+  for (std::size_t i = 0; i < run.scans.size(); ++i) {
+    for (std::size_t k = 0; k < 10; ++k) mapper.AddOdometry(run.odometry[i * 10 + k]);
+    (void)mapper.AddScan(run.scans[i]);
+  }
+  PrintBudgets<Profile>(kScans);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc >= 3 && std::strcmp(argv[1], "building") == 0) return RunIntel(argv[2]);
+  if (argc >= 2 && std::strcmp(argv[1], "vacuum") == 0) return RunSynthetic<dpcr::VacuumProfile>(450);
+  if (argc >= 2 && std::strcmp(argv[1], "tiny") == 0) return RunSynthetic<dpcr::TinyProfile>(256);
+  std::fprintf(stderr, "usage: %s building INTEL.clf | vacuum | tiny\n", argv[0]);
+  return 2;
+}

@@ -1,0 +1,112 @@
+#include "tools/bench/mapper_bench.hpp"
+
+#include <valgrind/callgrind.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <vector>
+
+#include "core/mapper.hpp"
+#include "host_sim/carmen/carmen_reader.hpp"
+
+namespace dpcr_bench {
+namespace {
+
+using MapperType = dpcr::Mapper<dpcr::BuildingProfile>;
+
+struct Input {
+  float laser_offset_m = 0.0f;
+  std::vector<dpcr::OdometrySample> odometry;  // one per scan: the pose logged with it
+  std::vector<MapperType::ScanType> scans;
+  std::vector<std::string> stamps;
+};
+
+// Same feeding as dpcr-replay --carmen (odometry "laser", decimation beyond kMaxBeams).
+void Load(const MapperBenchOptions& o, Input* in) {
+  std::ifstream file(o.clf_path);
+  if (!file) throw std::runtime_error(o.clf_path + ": cannot open");
+  dpcr::carmen::CarmenReader reader(file);
+  dpcr::carmen::Record rec;
+  while (reader.Next(&rec)) {
+    if (rec.kind != dpcr::carmen::Record::Kind::kLaser) continue;
+    const dpcr::carmen::LaserRecord& laser = rec.laser;
+    dpcr::OdometrySample s;
+    s.stamp_us = laser.stamp_us;
+    s.pose = laser.odom_pose;
+    in->odometry.push_back(s);
+    MapperType::ScanType scan;
+    scan.stamp_us = laser.stamp_us;
+    const std::size_t n = laser.ranges_m.size();
+    const std::size_t stride = (n + dpcr::BuildingProfile::kMaxBeams - 1) / dpcr::BuildingProfile::kMaxBeams;
+    for (std::size_t i = 0; i < n; i += stride) {
+      dpcr::Beam b;
+      b.angle_rad = laser.angle_min_rad + static_cast<float>(i) * laser.angle_increment_rad;
+      b.range_m = laser.ranges_m[i];
+      (void)scan.beams.push_back(b);
+    }
+    in->scans.push_back(scan);
+    in->stamps.push_back(laser.stamp_text);
+    if (o.scans > 0 && static_cast<int>(in->scans.size()) == o.scans) break;
+  }
+  in->laser_offset_m = reader.front_laser_offset_m();
+}
+
+}  // namespace
+
+int RunMapperBench(const MapperBenchOptions& o) {
+  static Input input;
+  Load(o, &input);
+  static MapperType mapper;
+  dpcr::MapperConfig config;
+  config.lidar.max_range_m = o.max_range_m;
+  config.lidar.mount = dpcr::Pose2{input.laser_offset_m, 0.0f, 0.0f};
+  if (o.submap_miss_range_m >= 0.0f) config.front_end.submap_miss_range_m = o.submap_miss_range_m;
+  if (o.reference_max_distance_m > 0.0f) config.front_end.reference.max_distance_m = o.reference_max_distance_m;
+  if (o.k1 > 0) config.front_end.submap_line_period = o.k1;
+  if (o.k2 > 0) config.front_end.region_line_period = o.k2;
+  if (o.ks > 0) config.front_end.second_registration_period = o.ks;
+  if (o.n > 0) config.front_end.submap_scans = o.n;
+  if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
+  std::vector<double> us;
+  us.reserve(input.scans.size());
+  std::vector<dpcr::Pose2> poses;
+  poses.reserve(input.scans.size());
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < input.scans.size(); ++i) {
+    mapper.AddOdometry(input.odometry[i]);
+    const bool counted = o.callgrind_stride > 0 && i % static_cast<std::size_t>(o.callgrind_stride) == 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    if (counted) CALLGRIND_TOGGLE_COLLECT;
+    (void)mapper.AddScan(input.scans[i]);
+    if (counted) {
+      CALLGRIND_TOGGLE_COLLECT;
+      CALLGRIND_DUMP_STATS;
+    }
+    us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+    poses.push_back(mapper.pose());
+  }
+  const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!o.trajectory_path.empty()) {
+    std::ofstream tum(o.trajectory_path);
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      const dpcr::Pose2& p = poses[i];
+      tum << input.stamps[i] << ' ' << p.x << ' ' << p.y << " 0 0 0 " << std::sin(p.theta / 2.0f) << ' '
+          << std::cos(p.theta / 2.0f) << '\n';
+    }
+  }
+  std::vector<double> sorted = us;
+  std::sort(sorted.begin(), sorted.end());
+  const auto& c = mapper.front_end_counters();
+  std::printf("scans %zu  AddScan total %.3f s  median %.1f us  p90 %.1f us  max %.1f us\n", us.size(), total_s,
+              sorted[sorted.size() / 2], sorted[sorted.size() * 9 / 10], sorted.back());
+  std::printf("first registrations %u (rejected %u), second %u (rejected %u), submap line builds %u, region line builds %u, regions %d\n",
+              c.first_registrations, c.first_rejected, c.second_registrations, c.second_rejected, c.submap_line_builds,
+              c.region_line_builds, mapper.region_count());
+  return 0;
+}
+
+}  // namespace dpcr_bench

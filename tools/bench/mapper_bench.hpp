@@ -1,0 +1,25 @@
+// `dpcr-bench mapper`: the cost of Mapper::AddScan on a CARMEN log (docs/front-end-cost.md).
+// The log is parsed into memory first; only AddScan is timed or counted.
+#pragma once
+
+#include <string>
+
+namespace dpcr_bench {
+
+struct MapperBenchOptions {
+  std::string clf_path = "/work/shared/data/intel.clf";
+  int scans = 0;  // the first N laser scans (0: all)
+  float max_range_m = 20.0f;  // as dpcr-replay
+  // Callgrind mode (> 0): every k-th scan's AddScan is bracketed by collection toggles and
+  // followed by a stats dump (run under valgrind --tool=callgrind --collect-atstart=no).
+  int callgrind_stride = 0;
+  // Schedule / submap overrides (negative: the MapperConfig default).
+  float submap_miss_range_m = -1.0f;
+  float reference_max_distance_m = -1.0f;
+  int k1 = -1, k2 = -1, ks = -1, n = -1;
+  std::string trajectory_path;  // TUM output of the run (empty: none)
+};
+
+int RunMapperBench(const MapperBenchOptions& options);
+
+}  // namespace dpcr_bench
