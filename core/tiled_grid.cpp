@@ -1,6 +1,7 @@
 #include "core/tiled_grid.hpp"
 
 #include "core/assert.hpp"
+#include "core/cell_line.hpp"
 
 namespace dpcr {
 TiledGrid::TiledGrid(TilePool* pool, Span<TileId> index, int tiles_x, int tiles_y)
@@ -78,6 +79,14 @@ bool MarkOnce(Tile* tile, int offset, std::uint32_t stamp) {
   return true;
 }
 
+// Adds a log-odds delta, clamped; an unknown cell starts from 0 (p = 0.5).
+void ApplyDelta(std::int16_t* cell, std::int16_t delta, std::int16_t lo, std::int16_t hi) {
+  int v = (*cell == kUnknownCell ? 0 : *cell) + delta;
+  v = v < lo ? lo : v;
+  v = v > hi ? hi : v;
+  *cell = static_cast<std::int16_t>(v);
+}
+
 }  // namespace
 
 bool TiledGrid::Reserve(CellIndex c, std::uint32_t stamp) {
@@ -91,62 +100,33 @@ bool TiledGrid::Reserve(CellIndex c, std::uint32_t stamp) {
 TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::int16_t delta, std::int16_t lo,
                                                   std::int16_t hi, std::uint32_t stamp) {
   SegmentStats st;
-  std::int32_t dx = b.x - a.x;
-  std::int32_t dy = b.y - a.y;
-  const std::int32_t sx = dx >= 0 ? 1 : -1;
-  const std::int32_t sy = dy >= 0 ? 1 : -1;
-  dx = dx >= 0 ? dx : -dx;
-  dy = dy >= 0 ? dy : -dy;
-  std::int32_t err = dx - dy;
-  CellIndex c = a;
-  // The tile of the previous cell (its box slot, or -2 before the first cell).
+  // The tile of the previous cell: a ray crosses few tiles, so most cells skip the lookup.
   std::int32_t cur_tx = 0, cur_ty = 0;
-  int cur_slot = -2;
+  bool have_tile = false;
   Tile* tile = nullptr;
-  while (c != b) {
+  TraceCells(a, b, [&](CellIndex c) {
     const std::int32_t tx = (c.x >> 5) - origin_tile_.x;
     const std::int32_t ty = (c.y >> 5) - origin_tile_.y;
-    if (cur_slot == -2 || tx != cur_tx || ty != cur_ty) {
+    if (!have_tile || tx != cur_tx || ty != cur_ty) {
       if (static_cast<std::uint32_t>(tx) >= static_cast<std::uint32_t>(tiles_x_) ||
           static_cast<std::uint32_t>(ty) >= static_cast<std::uint32_t>(tiles_y_)) {
-        ++st.out_of_box;
-        return st;
+        ++st.out_of_box;  // the box is convex: the ray never comes back
+        return false;
       }
       cur_tx = tx;
       cur_ty = ty;
-      cur_slot = ty * tiles_x_ + tx;
-      tile = TileForWrite(cur_slot);
-      if (tile != nullptr && stamp != 0 && tile->stamp != stamp) {
-        for (std::uint32_t& word : tile->updated) word = 0;
-        tile->stamp = stamp;
-      }
+      have_tile = true;
+      tile = TileForWrite(ty * tiles_x_ + tx);
     }
     if (tile == nullptr) {
       ++st.dropped_pool_full;  // nothing is freed while a scan is inserted: no retry
-    } else {
-      ++st.applied;
-      const int offset = ((c.y & 31) << 5) | (c.x & 31);
-      std::uint32_t& word = tile->updated[offset >> 5];
-      const std::uint32_t bit = 1u << (offset & 31);
-      if (stamp == 0 || (word & bit) == 0) {
-        if (stamp != 0) word |= bit;
-        std::int16_t& cell = tile->cells[offset];
-        int v = (cell == kUnknownCell ? 0 : cell) + delta;
-        v = v < lo ? lo : v;
-        v = v > hi ? hi : v;
-        cell = static_cast<std::int16_t>(v);
-      }
+      return true;
     }
-    const std::int32_t e2 = 2 * err;
-    if (e2 > -dy) {
-      err -= dy;
-      c.x += sx;
-    }
-    if (e2 < dx) {
-      err += dx;
-      c.y += sy;
-    }
-  }
+    ++st.applied;
+    const int offset = ((c.y & 31) << 5) | (c.x & 31);
+    if (stamp == 0 || MarkOnce(tile, offset, stamp)) ApplyDelta(&tile->cells[offset], delta, lo, hi);
+    return true;
+  });
   return st;
 }
 
@@ -157,14 +137,8 @@ Status TiledGrid::Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::
   if (slot < 0) return Status::kOutOfBounds;
   Tile* tile = TileForWrite(slot);
   if (tile == nullptr) return Status::kPoolFull;
-  // Already updated in this scan: a legal repeat, nothing to do.
-  if (stamp != 0 && !MarkOnce(tile, offset, stamp)) return Status::kOk;
-  std::int16_t& cell = tile->cells[offset];
-  const int base = cell == kUnknownCell ? 0 : cell;
-  int v = base + delta;
-  if (v < lo) v = lo;
-  if (v > hi) v = hi;
-  cell = static_cast<std::int16_t>(v);
+  // At most one update per cell per scan (stamp 0: no such rule); a repeat is legal and ignored.
+  if (stamp == 0 || MarkOnce(tile, offset, stamp)) ApplyDelta(&tile->cells[offset], delta, lo, hi);
   return Status::kOk;
 }
 
