@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <string>
+#include <unistd.h>
 
 #include "core/mapper.hpp"
 #include "host_sim/drivers/device_files.hpp"
@@ -32,7 +34,9 @@ struct RoundTrip {
 };
 
 RoundTrip MapBothWays(bool registration) {
-  const auto dir = std::filesystem::temp_directory_path() / "dpcr_round_trip_test";
+  // One directory per process and case: parallel ctest runs (or two builds' runs) must not share files.
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("dpcr_round_trip_" + std::to_string(getpid()) + (registration ? "_front_end" : "_odometry"));
   std::filesystem::create_directories(dir);
   dpcr::sim::SimConfig config;
   config.duration_min = 0.5;
