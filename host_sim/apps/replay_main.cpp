@@ -106,10 +106,7 @@ int ReplayCarmen(const Options& opt) {
         b.range_m = laser.ranges_m[i];
         (void)scan.beams.push_back(b);
       }
-      const auto t0 = Clock::now();
-      (void)mapper.AddScan(scan);
-      run.per_scan_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-      run.estimate.push_back({laser.stamp_us, mapper.pose()});
+      dpcr::output::AddTimedScan(mapper, scan, &run);
       if ((run.estimate.size() & 63) == 0) progress.Update(static_cast<double>(in.tellg()) / static_cast<double>(file_size));
     }
   } catch (const dpcr::carmen::CarmenError& e) {
@@ -139,7 +136,6 @@ template <class Profile>
 int ReplayDevice(const Options& opt) {
   using MapperType = dpcr::Mapper<Profile>;
   static MapperType mapper;
-  static typename MapperType::ScanType scan;
   dpcr::DeviceFilesConfig files;
   files.angle_map.angle_sign = opt.angle_sign;
   dpcr::LidarStreamConfig lidar;
@@ -158,14 +154,7 @@ int ReplayDevice(const Options& opt) {
       mapper.AddOdometry(replay.odometry());
       continue;
     }
-    const auto& s = replay.scan();
-    scan.stamp_us = s.stamp_us;
-    scan.beams.clear();
-    for (const auto& b : s.beams) (void)scan.beams.push_back(b);
-    const auto t0 = Clock::now();
-    (void)mapper.AddScan(scan);
-    run.per_scan_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-    run.estimate.push_back({scan.stamp_us, mapper.pose()});
+    dpcr::output::AddTimedScan(mapper, replay.scan(), &run);  // a DeviceScan is the mapper's scan type
   }
   if (run.estimate.empty()) throw std::runtime_error(opt.uart + ": no complete lidar revolution decoded");
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();

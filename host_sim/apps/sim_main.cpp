@@ -32,7 +32,6 @@ dpcr::Pose2 ToPose2(const dpcr::sim::Pose2d& p) {
 int Run(const Options& opt) {
   using MapperType = dpcr::Mapper<dpcr::VacuumProfile>;
   static MapperType mapper;  // ~2 MiB: static storage, as on the robot
-  static MapperType::ScanType scan;
 
   const bool builtin = std::filesystem::path(opt.world).extension().empty() && !std::filesystem::exists(opt.world);
   const dpcr::sim::World world = builtin ? dpcr::sim::LoadBuiltinWorld(opt.world) : dpcr::sim::LoadWorldFile(opt.world);
@@ -67,14 +66,8 @@ int Run(const Options& opt) {
       continue;
     }
     if (emitter && !emitter->AddScan(event.scan)) throw std::runtime_error("device emitter rejected a scan");
-    scan.stamp_us = event.scan.stamp_us;
-    scan.beams.clear();
-    for (const auto& b : event.scan.beams) (void)scan.beams.push_back(b);
-    const auto t0 = Clock::now();
-    (void)mapper.AddScan(scan);
-    run.per_scan_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-    run.estimate.push_back({scan.stamp_us, mapper.pose()});
-    run.ground_truth.push_back({scan.stamp_us, ToPose2(event.truth)});
+    dpcr::output::AddTimedScan(mapper, event.scan, &run);  // a SimScan is the vacuum mapper's scan type
+    run.ground_truth.push_back({event.scan.stamp_us, ToPose2(event.truth)});
     if ((run.estimate.size() & 63) == 0) progress.Update(static_cast<double>(event.time_us) / total_us);
   }
   progress.Done();

@@ -2,6 +2,7 @@
 // trajectory.tum, ground_truth.tum (when known) and metrics.json.
 #pragma once
 
+#include <chrono>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -19,6 +20,15 @@ struct RunRecord {
   const std::vector<dpcr::eval::Relation>* relations = nullptr;  // with --relations
   double wall_seconds = 0.0;                // the whole run, parsing included
 };
+
+// Feeds one scan to the mapper, timing only the core's work, and records the pose it gives.
+template <class MapperType>
+void AddTimedScan(MapperType& mapper, const typename MapperType::ScanType& scan, RunRecord* run) {
+  const auto t0 = std::chrono::steady_clock::now();
+  (void)mapper.AddScan(scan);
+  run->per_scan_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  run->estimate.push_back({scan.stamp_us, mapper.pose()});
+}
 
 // Writes the files; returns metrics.json's content. Throws std::runtime_error on I/O errors.
 nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, const RunRecord& run,
