@@ -39,7 +39,7 @@ struct VacuumProfile {
   // de-skew), first registration, second registration, insertion (submap + regional map), line
   // extraction (reference builds: obstacle cells, lines, distance transform).
   static constexpr std::uint64_t kBudgetPredictionInstr = 80'000;
-  static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 290'000;
+  static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 390'000;
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 50'000;
   static constexpr std::uint64_t kBudgetInsertionInstr = 4'100'000;
   static constexpr std::uint64_t kBudgetLineExtractionInstr = 1'600'000;
@@ -88,7 +88,7 @@ struct TinyProfile {
   // de-skew), first registration, second registration, insertion (submap + regional map), line
   // extraction (reference builds: obstacle cells, lines, distance transform).
   static constexpr std::uint64_t kBudgetPredictionInstr = 45'000;
-  static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 130'000;
+  static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 190'000;
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 21'000;
   static constexpr std::uint64_t kBudgetInsertionInstr = 1'700'000;
   static constexpr std::uint64_t kBudgetLineExtractionInstr = 580'000;

@@ -19,6 +19,11 @@ struct GridConfig {
   // Clamp at +-3.5 nat (p = 0.97 / 0.03) so that moved furniture can be unlearnt.
   std::int16_t clamp_max = 3584;
   std::int16_t clamp_min = -3584;
+  // Regional-map cells that reach a clamp are settled and keep their value (TiledGrid::
+  // set_settle_at_bounds): a settled map cannot follow the robot's drift. Apartment, 35 min:
+  // LocErr_ave 0.060 m with, 0.81 m without (docs/front-end-accuracy.md). The price: a wall or
+  // free space that has settled is not unlearnt when furniture moves.
+  bool settle_at_clamp = true;
 };
 
 struct LidarConfig {
@@ -28,6 +33,12 @@ struct LidarConfig {
   float no_return_free_m = 0.0f;
   Pose2 mount;  // the lidar's pose in the robot frame
 };
+
+constexpr ReferenceConfig ReferenceWithThreshold(std::int16_t obstacle_threshold) {
+  ReferenceConfig c;
+  c.obstacle_threshold = obstacle_threshold;
+  return c;
+}
 
 struct FrontEndConfig {
   int submap_scans = 20;          // N: scans fused into the submap
@@ -41,6 +52,12 @@ struct FrontEndConfig {
   float submap_miss_range_m = 0.5f;
   float region_width_m = 4.0f;    // S
   float region_hysteresis_m = 0.3f;  // distance past a border before switching region
+  // A regional map is a reference for the second registration once it holds this many scans.
+  // Until then the submap registers against the most mature regional map whose box holds the
+  // robot at least `reference_inner_margin_m` inside, so that a new region is built in the frame
+  // of the old one instead of in its own (young, drifting) frame.
+  int region_mature_scans = 100;
+  float reference_inner_margin_m = 2.0f;
   // false: the odometry pipeline (dead reckoning + insertion), for comparison.
   bool enable_registration = true;
   // Consecutive rejected first registrations before the status says "lost".
@@ -52,7 +69,12 @@ struct FrontEndConfig {
   int second_registration_max_points = 600;
   PlicpConfig first_registration;
   PlicpConfig second_registration;
-  ReferenceConfig reference;
+  // Obstacle thresholds (Q10 log-odds) of the two references. The submap holds unclamped sums
+  // of its N scans: 2000 = hit in about three scans more than missed (a young submap asks for
+  // hits in every scan so far). A regional map is clamped at +-3584: 3000 = settled or nearly.
+  // Cells that range noise touches only now and then stay out, so lines do not tilt with them.
+  ReferenceConfig submap_reference = ReferenceWithThreshold(2000);
+  ReferenceConfig region_reference = ReferenceWithThreshold(3000);
 };
 
 struct MapperConfig {

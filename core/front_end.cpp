@@ -92,8 +92,12 @@ void FrontEnd::RebuildSubmapReferenceIfDue() {
   const FrontEndConfig& f = config_.front_end;
   if (scans_since_submap_lines_ >= static_cast<std::uint32_t>(f.submap_line_period) ||
       fe_counters_.submap_line_builds == 0) {
+    // A young submap cannot reach the threshold: ask for a hit in every scan it holds so far.
+    ReferenceConfig reference = f.submap_reference;
+    const int reachable = s_.submap->size() * config_.grid.hit_delta - 1;
+    if (reachable < reference.obstacle_threshold) reference.obstacle_threshold = static_cast<std::int16_t>(reachable);
     ReferenceBuildStats stats;
-    const Status s = s_.submap_reference->Build(s_.submap->grid(), s_.submap->grid().box(), f.reference, &stats);
+    const Status s = s_.submap_reference->Build(s_.submap->grid(), s_.submap->grid().box(), reference, &stats);
     if (s != Status::kOk) fe_counters_.reference_cells_dropped += static_cast<std::uint32_t>(stats.dropped_cells);
     ++fe_counters_.submap_line_builds;
     scans_since_submap_lines_ = 0;
@@ -141,6 +145,7 @@ void FrontEnd::EnterRegion(bool first) {
   r.scans_inserted = 0;
   const int half = r.grid->tiles_x() / 2;
   r.grid->set_resolution_m(config_.grid.resolution_m);
+  r.grid->set_settle_at_bounds(config_.grid.settle_at_clamp);
   r.grid->Reset(CellIndex{-half, -half});
   current_region_ = region_count_++;
   ++counters_.regions_created;
@@ -164,21 +169,50 @@ void FrontEnd::SeedRegionFromSubmap(RegionalMap& r) {
   if (++stamp_ == 0) stamp_ = 1;  // the scan being added gets its own stamp
 }
 
+int FrontEnd::ReferenceRegion() const {
+  const FrontEndConfig& f = config_.front_end;
+  const auto mature = [&](int i) {
+    return s_.regions[static_cast<std::size_t>(i)].scans_inserted >= static_cast<std::uint32_t>(f.region_mature_scans);
+  };
+  if (current_region_ >= 0 && mature(current_region_)) return current_region_;
+  // The current map is young (or there is none: pool full): the most mature map around the robot.
+  const Pose2 robot = pose();
+  int best = -1;
+  for (int i = 0; i < region_count_; ++i) {
+    const RegionalMap& r = s_.regions[static_cast<std::size_t>(i)];
+    if (!mature(i) || (best >= 0 && r.scans_inserted <= s_.regions[static_cast<std::size_t>(best)].scans_inserted)) continue;
+    const Point2 local = r.anchor.Inverse().Apply(Point2{robot.x, robot.y});
+    const CellBox box = r.grid->box();
+    const float res = r.grid->resolution_m(), margin = f.reference_inner_margin_m;
+    const bool inside = local.x >= static_cast<float>(box.min.x) * res + margin &&
+                        local.y >= static_cast<float>(box.min.y) * res + margin &&
+                        local.x <= static_cast<float>(box.max.x) * res - margin &&
+                        local.y <= static_cast<float>(box.max.y) * res - margin;
+    if (inside) best = i;
+  }
+  if (best >= 0) return best;
+  // No mature map around: the young current one, once it holds more than the submap it came from.
+  if (current_region_ >= 0 &&
+      s_.regions[static_cast<std::size_t>(current_region_)].scans_inserted >= static_cast<std::uint32_t>(f.submap_scans)) {
+    return current_region_;
+  }
+  return -1;
+}
+
 void FrontEnd::SecondRegistration() {
   scans_since_second_ = 0;
-  if (current_region_ < 0) return;
-  RegionalMap& r = s_.regions[static_cast<std::size_t>(current_region_)];
-  // A regional map with little in it cannot correct anything (it was just made from the submap).
-  if (r.scans_inserted < static_cast<std::uint32_t>(config_.front_end.submap_scans)) return;
+  const int ref = ReferenceRegion();
+  if (ref < 0) return;
+  RegionalMap& r = s_.regions[static_cast<std::size_t>(ref)];
   const FrontEndConfig& f = config_.front_end;
   ++scans_since_region_lines_;
-  if (reference_region_ != current_region_ || scans_since_region_lines_ * static_cast<std::uint32_t>(f.second_registration_period) >=
-                                                  static_cast<std::uint32_t>(f.region_line_period)) {
+  if (reference_region_ != ref || scans_since_region_lines_ * static_cast<std::uint32_t>(f.second_registration_period) >=
+                                      static_cast<std::uint32_t>(f.region_line_period)) {
     ReferenceBuildStats stats;
-    const Status s = s_.region_reference->Build(*r.grid, r.grid->box(), f.reference, &stats);
+    const Status s = s_.region_reference->Build(*r.grid, r.grid->box(), f.region_reference, &stats);
     if (s != Status::kOk) fe_counters_.reference_cells_dropped += static_cast<std::uint32_t>(stats.dropped_cells);
     ++fe_counters_.region_line_builds;
-    reference_region_ = current_region_;
+    reference_region_ = ref;
     scans_since_region_lines_ = 0;
   }
   RegisterSubmap(r);

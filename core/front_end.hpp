@@ -88,6 +88,7 @@ class FrontEnd {
   void RebuildSubmapReferenceIfDue();
   void EnterRegion(bool first);
   void SecondRegistration();
+  int ReferenceRegion() const;
   void UpdateStatus();
 
   FrontEndStorage s_;

@@ -31,24 +31,28 @@ void FitFromMoments(LineFeature* l) {
 
 LineFeature Moments(Span<ObstacleCell> cells, const std::uint16_t* perm, Range r) {
   LineFeature l;
-  const float n = static_cast<float>(r.hi - r.lo);
   for (std::uint32_t i = r.lo; i < r.hi; ++i) {
-    const Point2 p = Centre(cells[perm[i]]);
-    l.mean.x += p.x;
-    l.mean.y += p.y;
+    const ObstacleCell& c = cells[perm[i]];
+    const Point2 p = Centre(c);
+    const float w = c.weight;
+    l.mass += w;
+    l.mean.x += w * p.x;
+    l.mean.y += w * p.y;
   }
-  l.mean.x /= n;
-  l.mean.y /= n;
+  l.mean.x /= l.mass;
+  l.mean.y /= l.mass;
   for (std::uint32_t i = r.lo; i < r.hi; ++i) {
-    const Point2 p = Centre(cells[perm[i]]);
+    const ObstacleCell& c = cells[perm[i]];
+    const Point2 p = Centre(c);
+    const float w = c.weight;
     const float dx = p.x - l.mean.x, dy = p.y - l.mean.y;
-    l.cxx += dx * dx;
-    l.cxy += dx * dy;
-    l.cyy += dy * dy;
+    l.cxx += w * dx * dx;
+    l.cxy += w * dx * dy;
+    l.cyy += w * dy * dy;
   }
-  l.cxx /= n;
-  l.cxy /= n;
-  l.cyy /= n;
+  l.cxx /= l.mass;
+  l.cxy /= l.mass;
+  l.cyy /= l.mass;
   l.support = static_cast<std::uint16_t>(r.hi - r.lo);
   FitFromMoments(&l);
   return l;
@@ -121,13 +125,14 @@ bool Mergeable(const LineFeature& p, const LineFeature& q, const LineExtractorCo
 // Union of two supports by the parallel-axis rule; endpoints = extremes of the four old ones.
 LineFeature Merged(const LineFeature& p, const LineFeature& q) {
   LineFeature m;
-  const float np = p.support, nq = q.support, n = np + nq;
+  const float np = p.mass, nq = q.mass, n = np + nq;
   m.mean = Point2{(np * p.mean.x + nq * q.mean.x) / n, (np * p.mean.y + nq * q.mean.y) / n};
   const float pdx = p.mean.x - m.mean.x, pdy = p.mean.y - m.mean.y;
   const float qdx = q.mean.x - m.mean.x, qdy = q.mean.y - m.mean.y;
   m.cxx = (np * (p.cxx + pdx * pdx) + nq * (q.cxx + qdx * qdx)) / n;
   m.cxy = (np * (p.cxy + pdx * pdy) + nq * (q.cxy + qdx * qdy)) / n;
   m.cyy = (np * (p.cyy + pdy * pdy) + nq * (q.cyy + qdy * qdy)) / n;
+  m.mass = n;
   m.support = static_cast<std::uint16_t>(p.support + q.support);
   FitFromMoments(&m);
   const Point2 d{m.normal.y, -m.normal.x};

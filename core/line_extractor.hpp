@@ -23,6 +23,9 @@ struct ObstacleCell {
   std::uint16_t line = kNoLine;  // owning line feature, kNoLine for clutter
   std::int8_t nx = 0;            // local unit normal * 127 from the 5x5 neighbourhood; (0, 0) = none
   std::int8_t ny = 0;
+  // Weight in the line fits: the cell's evidence (log-odds), so that the solid core of a wall
+  // steers a line and the cells that range noise reaches now and then barely do.
+  std::uint16_t weight = 1;
 };
 
 struct LineFeature {
@@ -32,7 +35,9 @@ struct LineFeature {
   float offset = 0.0f;
   float rms = 0.0f;      // fit residual (RMS perpendicular distance of the support cells)
   std::uint16_t support = 0;  // obstacle cells owning this line
-  // Centroid and central second moments (per cell) of the support: merging two lines is O(1).
+  // Weighted centroid and central second moments (per unit weight) of the support, and the
+  // total weight: merging two lines is O(1).
+  float mass = 0.0f;
   Point2 mean;
   float cxx = 0.0f, cxy = 0.0f, cyy = 0.0f;
 };

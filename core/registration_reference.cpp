@@ -70,6 +70,8 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
           c = ObstacleCell{};
           c.x = static_cast<std::int16_t>(x);
           c.y = static_cast<std::int16_t>(y);
+          // Q10 log-odds / 64: up to 511 for an unclamped submap sum, 56 at the regional clamp.
+          if (config.weight_by_evidence) c.weight = static_cast<std::uint16_t>(1 + (v >> 6));
           nearest_[static_cast<std::size_t>(y * w_ + x)] = static_cast<std::uint16_t>(cell_count_++);
         }
       }

@@ -18,6 +18,8 @@ struct ReferenceConfig {
   // A cell is an obstacle above this log-odds (Q10). 0 = more likely occupied than free; one hit
   // (+867) passes, a hit followed by two misses (-830) does not.
   std::int16_t obstacle_threshold = 0;
+  // Line fits weight each cell by its log-odds (ObstacleCell::weight); false: all cells alike.
+  bool weight_by_evidence = true;
   // Beyond this distance a window cell has no nearest obstacle (the correspondence gate's bound).
   float max_distance_m = 1.0f;
   LineExtractorConfig lines;

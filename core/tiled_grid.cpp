@@ -79,8 +79,10 @@ bool MarkOnce(Tile* tile, int offset, std::uint32_t stamp) {
   return true;
 }
 
-// Adds a log-odds delta, clamped; an unknown cell starts from 0 (p = 0.5).
-void ApplyDelta(std::int16_t* cell, std::int16_t delta, std::int16_t lo, std::int16_t hi) {
+// Adds a log-odds delta, clamped; an unknown cell starts from 0 (p = 0.5). With `settle`, a
+// cell already at a bound stays there.
+void ApplyDelta(std::int16_t* cell, std::int16_t delta, std::int16_t lo, std::int16_t hi, bool settle) {
+  if (settle && (*cell == lo || *cell == hi)) return;
   int v = (*cell == kUnknownCell ? 0 : *cell) + delta;
   v = v < lo ? lo : v;
   v = v > hi ? hi : v;
@@ -124,7 +126,7 @@ TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::
     }
     ++st.applied;
     const int offset = ((c.y & 31) << 5) | (c.x & 31);
-    if (stamp == 0 || MarkOnce(tile, offset, stamp)) ApplyDelta(&tile->cells[offset], delta, lo, hi);
+    if (stamp == 0 || MarkOnce(tile, offset, stamp)) ApplyDelta(&tile->cells[offset], delta, lo, hi, settle_at_bounds_);
     return true;
   });
   return st;
@@ -138,7 +140,7 @@ Status TiledGrid::Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::
   Tile* tile = TileForWrite(slot);
   if (tile == nullptr) return Status::kPoolFull;
   // At most one update per cell per scan (stamp 0: no such rule); a repeat is legal and ignored.
-  if (stamp == 0 || MarkOnce(tile, offset, stamp)) ApplyDelta(&tile->cells[offset], delta, lo, hi);
+  if (stamp == 0 || MarkOnce(tile, offset, stamp)) ApplyDelta(&tile->cells[offset], delta, lo, hi, settle_at_bounds_);
   return Status::kOk;
 }
 

@@ -38,11 +38,19 @@ class TiledGrid {
   float resolution_m() const { return resolution_m_; }
   void set_resolution_m(float r) { resolution_m_ = r; }
 
+  // Settled cells: once a cell reaches either clamp bound of an update, later updates leave it
+  // there. A regional map is the reference that re-anchors the robot; if confident walls and
+  // free space could still move, scans inserted at slightly drifted poses would drag them along
+  // and the map would follow the drift it is meant to remove. Off by default.
+  void set_settle_at_bounds(bool on) { settle_at_bounds_ = on; }
+  bool settle_at_bounds() const { return settle_at_bounds_; }
+
   // kUnknownCell outside the box or in a tile never written.
   std::int16_t Get(CellIndex c) const;
 
   // Adds `delta` clamped to [lo, hi] if the cell was not yet updated in scan `stamp`
-  // (stamp 0 = no once-per-scan rule). kOutOfBounds outside the box, kPoolFull when the tile
+  // (stamp 0 = no once-per-scan rule); a settled cell (see set_settle_at_bounds) keeps its value.
+  // kOutOfBounds outside the box, kPoolFull when the tile
   // cannot be allocated (the update is dropped), kOk otherwise (also when skipped as a repeat).
   Status Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::int16_t hi, std::uint32_t stamp);
 
@@ -85,6 +93,7 @@ class TiledGrid {
   int tiles_y_;
   CellIndex origin_tile_;
   float resolution_m_ = 0.05f;
+  bool settle_at_bounds_ = false;
   std::size_t allocated_tiles_ = 0;
 };
 

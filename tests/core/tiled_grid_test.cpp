@@ -52,6 +52,30 @@ TEST_CASE("Updates clamp and happen at most once per cell per scan") {
   REQUIRE(grid.Reserve(c, 9));
 }
 
+TEST_CASE("Settled cells keep their value once they reach a bound") {
+  auto pool = std::make_unique<dpcr::TilePoolStorage<2>>();
+  dpcr::TiledGridStorage<2, 2> grid(pool.get());
+  const CellIndex wall{3, 5}, floor{4, 5};
+  for (int i = 0; i < 4; ++i) REQUIRE(grid.Update(wall, 300, -1000, 1000, 0) == Status::kOk);
+  REQUIRE(grid.Get(wall) == 1000);
+  // Without settling a clamped cell is unlearnt.
+  REQUIRE(grid.Update(wall, -400, -1000, 1000, 0) == Status::kOk);
+  REQUIRE(grid.Get(wall) == 600);
+  grid.set_settle_at_bounds(true);
+  REQUIRE(grid.Update(wall, 300, -1000, 1000, 0) == Status::kOk);
+  REQUIRE(grid.Get(wall) == 900);  // below the bound: still learning
+  REQUIRE(grid.Update(wall, 300, -1000, 1000, 0) == Status::kOk);
+  REQUIRE(grid.Get(wall) == 1000);  // settled
+  for (int i = 0; i < 5; ++i) REQUIRE(grid.Update(wall, -400, -1000, 1000, 0) == Status::kOk);
+  REQUIRE(grid.Get(wall) == 1000);
+  // Free space settles at the lower bound the same way, also along a segment.
+  for (int i = 0; i < 3; ++i) static_cast<void>(grid.UpdateSegment(floor, CellIndex{8, 5}, -400, -1000, 1000, 0));
+  REQUIRE(grid.Get(floor) == -1000);
+  static_cast<void>(grid.UpdateSegment(floor, CellIndex{8, 5}, 300, -1000, 1000, 0));
+  REQUIRE(grid.Get(floor) == -1000);
+  REQUIRE(grid.Get(CellIndex{8, 5}) == dpcr::kUnknownCell);  // the segment's end is excluded
+}
+
 TEST_CASE("A full tile pool drops the update and says so") {
   auto pool = std::make_unique<dpcr::TilePoolStorage<1>>();
   dpcr::TiledGridStorage<2, 2> grid(pool.get());

@@ -30,6 +30,9 @@ int main(int argc, char** argv) {
   m->add_option("--k2", map.k2, "override K2 (region line period)");
   m->add_option("--ks", map.ks, "override Ks (second registration period)");
   m->add_option("--n", map.n, "override N (submap scans)");
+  m->add_option("--submap-threshold", map.submap_threshold, "override the submap reference's obstacle threshold (Q10)");
+  m->add_option("--region-threshold", map.region_threshold, "override the regional reference's obstacle threshold (Q10)");
+  m->add_option("--settle", map.settle, "override GridConfig::settle_at_clamp (0 or 1)");
   m->add_option("--trajectory", map.trajectory_path, "write the estimated trajectory (TUM)");
   CLI11_PARSE(app, argc, argv);
   if (r->parsed()) return dpcr_bench::RunRegistrationBench(reg);

@@ -65,11 +65,17 @@ int RunMapperBench(const MapperBenchOptions& o) {
   config.lidar.max_range_m = o.max_range_m;
   config.lidar.mount = dpcr::Pose2{input.laser_offset_m, 0.0f, 0.0f};
   if (o.submap_miss_range_m >= 0.0f) config.front_end.submap_miss_range_m = o.submap_miss_range_m;
-  if (o.reference_max_distance_m > 0.0f) config.front_end.reference.max_distance_m = o.reference_max_distance_m;
+  if (o.reference_max_distance_m > 0.0f) {
+    config.front_end.submap_reference.max_distance_m = o.reference_max_distance_m;
+    config.front_end.region_reference.max_distance_m = o.reference_max_distance_m;
+  }
   if (o.k1 > 0) config.front_end.submap_line_period = o.k1;
   if (o.k2 > 0) config.front_end.region_line_period = o.k2;
   if (o.ks > 0) config.front_end.second_registration_period = o.ks;
   if (o.n > 0) config.front_end.submap_scans = o.n;
+  if (o.submap_threshold >= 0) config.front_end.submap_reference.obstacle_threshold = static_cast<std::int16_t>(o.submap_threshold);
+  if (o.region_threshold >= 0) config.front_end.region_reference.obstacle_threshold = static_cast<std::int16_t>(o.region_threshold);
+  if (o.settle >= 0) config.grid.settle_at_clamp = o.settle != 0;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
   std::vector<double> us;
   us.reserve(input.scans.size());

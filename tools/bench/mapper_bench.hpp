@@ -17,6 +17,8 @@ struct MapperBenchOptions {
   float submap_miss_range_m = -1.0f;
   float reference_max_distance_m = -1.0f;
   int k1 = -1, k2 = -1, ks = -1, n = -1;
+  int submap_threshold = -1, region_threshold = -1;  // ReferenceConfig::obstacle_threshold (Q10)
+  int settle = -1;                                    // GridConfig::settle_at_clamp (0/1)
   std::string trajectory_path;  // TUM output of the run (empty: none)
 };
 
