@@ -40,7 +40,7 @@ struct VacuumProfile {
   // extraction (reference builds: obstacle cells, lines, distance transform).
   static constexpr std::uint64_t kBudgetPredictionInstr = 80'000;
   static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 390'000;
-  static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 50'000;
+  static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 130'000;
   static constexpr std::uint64_t kBudgetInsertionInstr = 4'100'000;
   static constexpr std::uint64_t kBudgetLineExtractionInstr = 1'600'000;
 };

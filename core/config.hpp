@@ -50,12 +50,17 @@ struct FrontEndConfig {
   // next to them; regional maps always take the whole rays. 0.5 m: intel local error 0.0146 m vs
   // 0.0161 m with whole rays, ~3x cheaper submap upkeep (docs/front-end-cost.md).
   float submap_miss_range_m = 0.5f;
+  // Submap lines are refitted to the raw points of the submap's scans lying within this distance
+  // (RegistrationReference::AddRefitPoint), so they sit where the walls are, not on cell centres.
+  // 0 = off (lines from cell centres only).
+  float submap_refit_gate_m = 0.1f;
+  int submap_refit_min_points = 10;
   float region_width_m = 4.0f;    // S
   float region_hysteresis_m = 0.3f;  // distance past a border before switching region
   // A regional map is a reference for the second registration once it holds this many scans.
-  // Until then the submap registers against the most mature regional map whose box holds the
-  // robot at least `reference_inner_margin_m` inside, so that a new region is built in the frame
-  // of the old one instead of in its own (young, drifting) frame.
+  // Until then the submap registers against the map of the region the robot came from, while the
+  // robot is at least `reference_inner_margin_m` inside that map's box, so that a new region is
+  // built in the frame of the previous one instead of in its own (young, drifting) frame.
   int region_mature_scans = 100;
   float reference_inner_margin_m = 2.0f;
   // false: the odometry pipeline (dead reckoning + insertion), for comparison.

@@ -22,7 +22,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   have_odom_ = have_scan_ = pool_full_ = false;
   consecutive_rejections_ = 0;
   region_count_ = 0;
-  current_region_ = reference_region_ = -1;
+  current_region_ = previous_region_ = reference_region_ = -1;
   scans_since_submap_lines_ = scans_since_region_lines_ = scans_since_second_ = 0;
   stamp_ = 0;
   return Status::kOk;
@@ -99,9 +99,20 @@ void FrontEnd::RebuildSubmapReferenceIfDue() {
     ReferenceBuildStats stats;
     const Status s = s_.submap_reference->Build(s_.submap->grid(), s_.submap->grid().box(), reference, &stats);
     if (s != Status::kOk) fe_counters_.reference_cells_dropped += static_cast<std::uint32_t>(stats.dropped_cells);
+    if (f.submap_refit_gate_m > 0.0f) RefitSubmapLines();
     ++fe_counters_.submap_line_builds;
     scans_since_submap_lines_ = 0;
   }
+}
+
+void FrontEnd::RefitSubmapLines() {
+  RegistrationReference& ref = *s_.submap_reference;
+  ref.BeginPointRefit();
+  for (int i = 0; i < s_.submap->size(); ++i) {
+    const SubmapScanView scan = s_.submap->scan(i);
+    for (const Point2& p : scan.points) ref.AddRefitPoint(scan.pose.Apply(p), config_.front_end.submap_refit_gate_m);
+  }
+  (void)ref.EndPointRefit(config_.front_end.submap_refit_min_points);
 }
 
 void FrontEnd::RegisterScan(std::size_t hits, const Pose2& predicted) {
@@ -125,6 +136,7 @@ void FrontEnd::EnterRegion(bool first) {
   const RegionKey key = tracker_.current();
   for (int i = 0; i < region_count_; ++i) {
     if (s_.regions[static_cast<std::size_t>(i)].key == key) {
+      if (i != current_region_) previous_region_ = current_region_;
       current_region_ = i;
       // Re-entering a known region: align the submap to it at once (paper: on region entry).
       if (config_.front_end.enable_registration) SecondRegistration();
@@ -147,6 +159,7 @@ void FrontEnd::EnterRegion(bool first) {
   r.grid->set_resolution_m(config_.grid.resolution_m);
   r.grid->set_settle_at_bounds(config_.grid.settle_at_clamp);
   r.grid->Reset(CellIndex{-half, -half});
+  previous_region_ = current_region_;
   current_region_ = region_count_++;
   ++counters_.regions_created;
   // A new regional map starts from the submap (paper §3.4: "the submap is directly used").
@@ -171,16 +184,15 @@ void FrontEnd::SeedRegionFromSubmap(RegionalMap& r) {
 
 int FrontEnd::ReferenceRegion() const {
   const FrontEndConfig& f = config_.front_end;
-  const auto mature = [&](int i) {
-    return s_.regions[static_cast<std::size_t>(i)].scans_inserted >= static_cast<std::uint32_t>(f.region_mature_scans);
-  };
-  if (current_region_ >= 0 && mature(current_region_)) return current_region_;
-  // The current map is young (or there is none: pool full): the most mature map around the robot.
-  const Pose2 robot = pose();
-  int best = -1;
-  for (int i = 0; i < region_count_; ++i) {
-    const RegionalMap& r = s_.regions[static_cast<std::size_t>(i)];
-    if (!mature(i) || (best >= 0 && r.scans_inserted <= s_.regions[static_cast<std::size_t>(best)].scans_inserted)) continue;
+  const auto scans = [&](int i) { return s_.regions[static_cast<std::size_t>(i)].scans_inserted; };
+  const auto mature = [&](int i) { return i >= 0 && scans(i) >= static_cast<std::uint32_t>(f.region_mature_scans); };
+  if (mature(current_region_)) return current_region_;
+  // The current map is young (or there is none: pool full): the map the robot came from, while
+  // the robot is still well inside it. Only that one: an older map seen again after a long loop
+  // may disagree with the drift accumulated since, and reconciling them is the back end's job.
+  if (mature(previous_region_)) {
+    const RegionalMap& r = s_.regions[static_cast<std::size_t>(previous_region_)];
+    const Pose2 robot = pose();
     const Point2 local = r.anchor.Inverse().Apply(Point2{robot.x, robot.y});
     const CellBox box = r.grid->box();
     const float res = r.grid->resolution_m(), margin = f.reference_inner_margin_m;
@@ -188,14 +200,10 @@ int FrontEnd::ReferenceRegion() const {
                         local.y >= static_cast<float>(box.min.y) * res + margin &&
                         local.x <= static_cast<float>(box.max.x) * res - margin &&
                         local.y <= static_cast<float>(box.max.y) * res - margin;
-    if (inside) best = i;
+    if (inside) return previous_region_;
   }
-  if (best >= 0) return best;
-  // No mature map around: the young current one, once it holds more than the submap it came from.
-  if (current_region_ >= 0 &&
-      s_.regions[static_cast<std::size_t>(current_region_)].scans_inserted >= static_cast<std::uint32_t>(f.submap_scans)) {
-    return current_region_;
-  }
+  // Otherwise the young current map, once it holds more than the submap it came from.
+  if (current_region_ >= 0 && scans(current_region_) >= static_cast<std::uint32_t>(f.submap_scans)) return current_region_;
   return -1;
 }
 
@@ -220,7 +228,9 @@ void FrontEnd::SecondRegistration() {
 
 void FrontEnd::RegisterSubmap(RegionalMap& r) {
   const FrontEndConfig& f = config_.front_end;
-  // Target: the submap's obstacle cells (from its reference, rebuilt every K1 scans), evenly thinned.
+  // Target: the submap's obstacle cells (from its reference, rebuilt every K1 scans), evenly
+  // thinned. Tried and dropped (docs/front-end-accuracy.md): the submap's raw points (noisier,
+  // clutter included) and cell centres moved onto their refitted lines; both were less accurate.
   const RegistrationReference& sub = *s_.submap_reference;
   const std::size_t n = sub.cell_count();
   if (n == 0) return;

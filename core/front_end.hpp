@@ -86,6 +86,7 @@ class FrontEnd {
   DPCR_STAGE void InsertIntoRegion(const ProjectedScan& projected);
   DPCR_STAGE void SeedRegionFromSubmap(RegionalMap& r);
   void RebuildSubmapReferenceIfDue();
+  void RefitSubmapLines();
   void EnterRegion(bool first);
   void SecondRegistration();
   int ReferenceRegion() const;
@@ -107,6 +108,7 @@ class FrontEnd {
   int consecutive_rejections_ = 0;
   int region_count_ = 0;
   int current_region_ = -1;
+  int previous_region_ = -1;  // the region the robot was in before current_region_
   int reference_region_ = -1;  // whose lines region_reference holds
   std::uint32_t scans_since_submap_lines_ = 0;
   std::uint32_t scans_since_region_lines_ = 0;

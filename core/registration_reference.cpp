@@ -1,5 +1,6 @@
 #include "core/registration_reference.hpp"
 
+#include <cmath>
 #include <cstdint>
 
 #include "core/assert.hpp"
@@ -19,10 +20,11 @@ std::int32_t Dist2(const ObstacleCell& c, int x, int y) {
 }  // namespace
 
 RegistrationReference::RegistrationReference(Span<ObstacleCell> cells, Span<std::uint16_t> nearest,
-                                             Span<std::uint16_t> scratch, Span<LineFeature> lines, int max_w,
-                                             int max_h)
-    : cells_(cells), nearest_(nearest), scratch_(scratch), lines_(lines), max_w_(max_w), max_h_(max_h) {
+                                             Span<std::uint16_t> scratch, Span<LineFeature> lines,
+                                             Span<RefitSums> refit, int max_w, int max_h)
+    : cells_(cells), nearest_(nearest), scratch_(scratch), lines_(lines), refit_(refit), max_w_(max_w), max_h_(max_h) {
   DPCR_ASSERT(nearest.size() == static_cast<std::size_t>(max_w * max_h) && scratch.size() >= cells.size());
+  DPCR_ASSERT(refit.size() >= lines.size());
   DPCR_ASSERT(cells.size() < kNoCell);
 }
 
@@ -159,6 +161,53 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
   }
   if (stats != nullptr) *stats = st;
   return (st.dropped_cells > 0 || st.extraction.lines_full) ? Status::kCapacityExceeded : Status::kOk;
+}
+
+void RegistrationReference::BeginPointRefit() {
+  for (std::size_t i = 0; i < line_count_; ++i) refit_[i] = RefitSums{};
+}
+
+void RegistrationReference::AddRefitPoint(Point2 p, float gate_m) {
+  const std::uint16_t k = Nearest(p);
+  if (k == kNoCell || cells_[k].line == kNoLine) return;
+  const LineFeature& l = lines_[cells_[k].line];
+  const float dx = p.x - l.mean.x, dy = p.y - l.mean.y;
+  const float v = l.normal.x * dx + l.normal.y * dy;
+  if (v > gate_m || v < -gate_m) return;
+  const float u = l.normal.y * dx - l.normal.x * dy;  // along d = (ny, -nx)
+  RefitSums& s = refit_[cells_[k].line];
+  s.n += 1.0f, s.u += u, s.v += v, s.uu += u * u, s.uv += u * v, s.vv += v * v;
+}
+
+int RegistrationReference::EndPointRefit(int min_points) {
+  int refitted = 0;
+  for (std::size_t i = 0; i < line_count_; ++i) {
+    const RefitSums& s = refit_[i];
+    if (s.n < static_cast<float>(min_points)) continue;
+    LineFeature& l = lines_[i];
+    // TLS in the line's own frame: mean (mu, mv), then the minor axis of the central moments.
+    const float mu = s.u / s.n, mv = s.v / s.n;
+    const float cuu = s.uu / s.n - mu * mu, cuv = s.uv / s.n - mu * mv, cvv = s.vv / s.n - mv * mv;
+    const float phi = 0.5f * std::atan2(2.0f * cuv, cuu - cvv);  // direction angle in (u, v)
+    const Point2 d{l.normal.y, -l.normal.x};
+    const Point2 mean{l.mean.x + mu * d.x + mv * l.normal.x, l.mean.y + mu * d.y + mv * l.normal.y};
+    const float c = std::cos(phi), sn = std::sin(phi);
+    const Point2 dir{c * d.x + sn * l.normal.x, c * d.y + sn * l.normal.y};
+    const Point2 normal{-dir.y, dir.x};
+    // Keep the normal's orientation, and the extent: endpoints projected on the new line.
+    const float sign = normal.x * l.normal.x + normal.y * l.normal.y < 0.0f ? -1.0f : 1.0f;
+    l.normal = Point2{sign * normal.x, sign * normal.y};
+    l.offset = l.normal.x * mean.x + l.normal.y * mean.y;
+    const auto project = [&](Point2 e) {
+      const float t = dir.x * (e.x - mean.x) + dir.y * (e.y - mean.y);
+      return Point2{mean.x + t * dir.x, mean.y + t * dir.y};
+    };
+    l.a = project(l.a);
+    l.b = project(l.b);
+    l.mean = mean;
+    ++refitted;
+  }
+  return refitted;
 }
 
 }  // namespace dpcr

@@ -34,8 +34,13 @@ struct ReferenceBuildStats {
 
 class RegistrationReference {
  public:
+  // Running sums of the points near one line, in that line's frame (u along, v across).
+  struct RefitSums {
+    float n = 0.0f, u = 0.0f, v = 0.0f, uu = 0.0f, uv = 0.0f, vv = 0.0f;
+  };
+
   RegistrationReference(Span<ObstacleCell> cells, Span<std::uint16_t> nearest, Span<std::uint16_t> scratch,
-                        Span<LineFeature> lines, int max_w, int max_h);
+                        Span<LineFeature> lines, Span<RefitSums> refit, int max_w, int max_h);
   RegistrationReference(const RegistrationReference&) = delete;
   RegistrationReference& operator=(const RegistrationReference&) = delete;
 
@@ -43,6 +48,15 @@ class RegistrationReference {
   // kCapacityExceeded when obstacle cells were dropped or lines did not fit (the cells beyond the
   // line capacity stay clutter); the reference is still usable either way.
   Status Build(const TiledGrid& grid, CellBox window, const ReferenceConfig& config, ReferenceBuildStats* stats);
+
+  // Sub-cell refit (after Build): every line is refitted to the raw points near it, so that its
+  // position is not the grid's quantisation of the wall (up to half a cell per wall, which
+  // registration would turn into a pose offset). Points are in the grid's world frame; a point
+  // counts for the line of its nearest obstacle cell if it lies within `gate_m` of that line.
+  // Lines with fewer than `min_points` keep their cell fit.
+  void BeginPointRefit();
+  void AddRefitPoint(Point2 p, float gate_m);
+  int EndPointRefit(int min_points);
 
   // Index of the obstacle cell nearest to world point p, kNoCell outside the window or bound.
   std::uint16_t Nearest(Point2 p) const {
@@ -69,6 +83,7 @@ class RegistrationReference {
   Span<std::uint16_t> nearest_;
   Span<std::uint16_t> scratch_;
   Span<LineFeature> lines_;
+  Span<RefitSums> refit_;
   int max_w_, max_h_;
   int w_ = 0, h_ = 0;
   std::size_t cell_count_ = 0, line_count_ = 0;
@@ -84,13 +99,15 @@ class RegistrationReferenceStorage : public RegistrationReference {
  public:
   RegistrationReferenceStorage()
       : RegistrationReference(Span<ObstacleCell>(cells_, kCells), Span<std::uint16_t>(nearest_, kW * kH),
-                              Span<std::uint16_t>(scratch_, kCells), Span<LineFeature>(lines_, kLines), kW, kH) {}
+                              Span<std::uint16_t>(scratch_, kCells), Span<LineFeature>(lines_, kLines),
+                              Span<RefitSums>(refit_, kLines), kW, kH) {}
 
  private:
   ObstacleCell cells_[kCells];
   std::uint16_t nearest_[kW * kH];
   std::uint16_t scratch_[kCells];
   LineFeature lines_[kLines];
+  RefitSums refit_[kLines];
 };
 
 }  // namespace dpcr

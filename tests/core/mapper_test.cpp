@@ -67,10 +67,12 @@ TEST_CASE("The front end tracks a room run and maps the room walls") {
   // The first scan fixes the world frame at the robot's first pose.
   const dpcr::Pose2 start = run.Sample(0.095f, 0.25f, 8.0f).pose;
   const dpcr::Pose2 expected = dpcr::Between(start, run.Sample(39.995f, 0.25f, 8.0f).pose);
-  // Perfect odometry and noiseless walls lying exactly on cell borders: registration may move the
-  // pose by up to half a cell (obstacle cells are represented by their centres), not more.
-  REQUIRE(m->pose().x == Approx(expected.x).margin(0.03));
-  REQUIRE(m->pose().y == Approx(expected.y).margin(0.03));
+  // Perfect odometry and noiseless walls lying exactly on cell borders, the worst case of
+  // quantisation: submap lines are refitted to the raw points, but regional-map lines sit on cell
+  // centres (half a cell off) and the second registration's targets are submap cell centres
+  // (another half cell at most): the pose may move by up to one cell, not more.
+  REQUIRE(m->pose().x == Approx(expected.x).margin(0.05));
+  REQUIRE(m->pose().y == Approx(expected.y).margin(0.05));
   REQUIRE(m->status() == dpcr::MapperStatus::kTracking);
   REQUIRE(m->front_end_counters().first_registrations == 399);
   REQUIRE(m->front_end_counters().first_rejected < 20);
