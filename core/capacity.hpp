@@ -41,8 +41,8 @@ struct VacuumProfile {
   static constexpr std::uint64_t kBudgetPredictionInstr = 80'000;
   static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 390'000;
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 130'000;
-  static constexpr std::uint64_t kBudgetInsertionInstr = 4'100'000;
-  static constexpr std::uint64_t kBudgetLineExtractionInstr = 1'600'000;
+  static constexpr std::uint64_t kBudgetInsertionInstr = 2'700'000;
+  static constexpr std::uint64_t kBudgetLineExtractionInstr = 1'100'000;
 };
 
 // The public benchmark logs (intel.clf: a 30 m x 30 m lab, ~900 m² with long corridors):
@@ -66,8 +66,8 @@ struct BuildingProfile {
   static constexpr std::uint64_t kBudgetPredictionInstr = 30'000;
   static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 180'000;
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 40'000;
-  static constexpr std::uint64_t kBudgetInsertionInstr = 1'000'000;
-  static constexpr std::uint64_t kBudgetLineExtractionInstr = 1'200'000;
+  static constexpr std::uint64_t kBudgetInsertionInstr = 700'000;
+  static constexpr std::uint64_t kBudgetLineExtractionInstr = 700'000;
 };
 
 // A small profile for tests: full pools are easy to reach.
@@ -90,8 +90,8 @@ struct TinyProfile {
   static constexpr std::uint64_t kBudgetPredictionInstr = 45'000;
   static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 190'000;
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 21'000;
-  static constexpr std::uint64_t kBudgetInsertionInstr = 1'700'000;
-  static constexpr std::uint64_t kBudgetLineExtractionInstr = 580'000;
+  static constexpr std::uint64_t kBudgetInsertionInstr = 1'130'000;
+  static constexpr std::uint64_t kBudgetLineExtractionInstr = 440'000;
 };
 
 }  // namespace dpcr

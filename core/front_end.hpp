@@ -79,14 +79,14 @@ class FrontEnd {
  private:
   // Stages (budgeted): prediction = Predict + ProjectScan; first registration = RegisterScan;
   // second registration = RegisterSubmap; insertion = Submap::Add + InsertIntoRegion +
-  // SeedRegionFromSubmap; line extraction = RegistrationReference::Build.
+  // SeedRegionFromSubmap; line extraction = RegistrationReference::Build + RefitSubmapLines.
   DPCR_STAGE Pose2 Predict(std::int64_t stamp_us);
   DPCR_STAGE void RegisterScan(std::size_t hits, const Pose2& predicted);
   DPCR_STAGE void RegisterSubmap(RegionalMap& r);
   DPCR_STAGE void InsertIntoRegion(const ProjectedScan& projected);
   DPCR_STAGE void SeedRegionFromSubmap(RegionalMap& r);
   void RebuildSubmapReferenceIfDue();
-  void RefitSubmapLines();
+  DPCR_STAGE void RefitSubmapLines();
   void EnterRegion(bool first);
   void SecondRegistration();
   int ReferenceRegion() const;

@@ -8,14 +8,74 @@
 namespace dpcr {
 namespace {
 
-// Distance-transform skip mask: up to 32 x 32 blocks of 16 cells (a 512-cell window); larger
-// windows visit every cell.
+// Distance-transform skip mask: up to 32 x 32 blocks of 16 x 16 cells (windows up to 512 x 512 cells).
+constexpr int kBlockShift = 4;
+constexpr int kBlockCells = 1 << kBlockShift;
 constexpr int kMaxBlocks = 1024;
 
 std::int32_t Dist2(const ObstacleCell& c, int x, int y) {
   const std::int32_t dx = c.x - x, dy = c.y - y;
   return dx * dx + dy * dy;
 }
+
+// Neighbours read by each of the four raster sweeps, in the order they are tried (the order
+// decides ties, so it is part of the result).
+constexpr int kForward[4][2] = {{-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+constexpr int kBackward[4][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}};
+constexpr int kRight[1][2] = {{1, 0}};
+constexpr int kLeft[1][2] = {{-1, 0}};
+
+// The nearest-seed table during the distance transform.
+struct SeedTable {
+  std::uint16_t* nearest;
+  const ObstacleCell* cells;
+  int w, h;
+
+  // Takes the nearest of cell (x, y)'s seed and its neighbours' seeds (first wins on ties).
+  // kInside: every neighbour is in the window (no bounds checks; most cells).
+  template <bool kInside, int kN>
+  void Relax(int x, int y, const int (&offsets)[kN][2]) const {
+    std::uint16_t* slot = nearest + y * w + x;
+    std::uint16_t cur = *slot;
+    std::int32_t cur_d = cur == kNoCell ? INT32_MAX : Dist2(cells[cur], x, y);
+    if (cur_d == 0) return;  // an obstacle cell is its own nearest
+    for (int k = 0; k < kN; ++k) {
+      const int nx = x + offsets[k][0], ny = y + offsets[k][1];
+      if (!kInside && (nx < 0 || ny < 0 || nx >= w || ny >= h)) continue;
+      const std::uint16_t cand = nearest[ny * w + nx];
+      if (cand == kNoCell || cand == cur) continue;
+      const std::int32_t d = Dist2(cells[cand], x, y);
+      if (d < cur_d) cur = cand, cur_d = d;
+    }
+    *slot = cur;
+  }
+
+  // One row of a sweep, x ascending (dir > 0) or descending, over the active 16-cell blocks only
+  // (inactive cells would be no-ops). `row_inside`: the rows the offsets reach exist.
+  template <int kN>
+  void SweepRow(int y, int dir, const int (&offsets)[kN][2], bool row_inside, const bool* active_row,
+                int blocks_x) const {
+    for (int i = 0; i < blocks_x; ++i) {
+      const int bx = dir > 0 ? i : blocks_x - 1 - i;
+      if (!active_row[bx]) continue;
+      const int x0 = bx << kBlockShift, x1 = (x0 + kBlockCells < w ? x0 + kBlockCells : w);
+      if (dir > 0) {
+        for (int x = x0; x < x1; ++x) RelaxAt(x, y, offsets, row_inside);
+      } else {
+        for (int x = x1 - 1; x >= x0; --x) RelaxAt(x, y, offsets, row_inside);
+      }
+    }
+  }
+
+  template <int kN>
+  void RelaxAt(int x, int y, const int (&offsets)[kN][2], bool row_inside) const {
+    if (row_inside && x > 0 && x < w - 1) {
+      Relax<true>(x, y, offsets);
+    } else {
+      Relax<false>(x, y, offsets);
+    }
+  }
+};
 
 }  // namespace
 
@@ -26,6 +86,7 @@ RegistrationReference::RegistrationReference(Span<ObstacleCell> cells, Span<std:
   DPCR_ASSERT(nearest.size() == static_cast<std::size_t>(max_w * max_h) && scratch.size() >= cells.size());
   DPCR_ASSERT(refit.size() >= lines.size());
   DPCR_ASSERT(cells.size() < kNoCell);
+  DPCR_ASSERT(((max_w + kBlockCells - 1) >> kBlockShift) * ((max_h + kBlockCells - 1) >> kBlockShift) <= kMaxBlocks);
 }
 
 std::uint16_t RegistrationReference::ObstacleAt(int x, int y) const {
@@ -110,53 +171,39 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
   const float bound_cells = config.max_distance_m * inv_res_;
   const std::int32_t bound2 = static_cast<std::int32_t>(bound_cells * bound_cells);
   const int reach = static_cast<int>(bound_cells) + 1;
-  constexpr int kBlockShift = 4;
-  const int blocks_x = (w_ + 15) >> kBlockShift, blocks_y = (h_ + 15) >> kBlockShift;
+  const int blocks_x = (w_ + kBlockCells - 1) >> kBlockShift;
   bool active[kMaxBlocks];
-  const bool use_blocks = blocks_x * blocks_y <= kMaxBlocks;
-  for (bool& a : active) a = !use_blocks;
-  if (use_blocks) {
-    for (std::size_t i = 0; i < cell_count_; ++i) {
-      const int bx0 = (cells_[i].x - reach < 0 ? 0 : cells_[i].x - reach) >> kBlockShift;
-      const int by0 = (cells_[i].y - reach < 0 ? 0 : cells_[i].y - reach) >> kBlockShift;
-      const int bx1 = (cells_[i].x + reach >= w_ ? w_ - 1 : cells_[i].x + reach) >> kBlockShift;
-      const int by1 = (cells_[i].y + reach >= h_ ? h_ - 1 : cells_[i].y + reach) >> kBlockShift;
-      for (int by = by0; by <= by1; ++by) {
-        for (int bx = bx0; bx <= bx1; ++bx) active[by * blocks_x + bx] = true;
-      }
+  for (bool& a : active) a = false;
+  for (std::size_t i = 0; i < cell_count_; ++i) {
+    const int bx0 = (cells_[i].x - reach < 0 ? 0 : cells_[i].x - reach) >> kBlockShift;
+    const int by0 = (cells_[i].y - reach < 0 ? 0 : cells_[i].y - reach) >> kBlockShift;
+    const int bx1 = (cells_[i].x + reach >= w_ ? w_ - 1 : cells_[i].x + reach) >> kBlockShift;
+    const int by1 = (cells_[i].y + reach >= h_ ? h_ - 1 : cells_[i].y + reach) >> kBlockShift;
+    for (int by = by0; by <= by1; ++by) {
+      for (int bx = bx0; bx <= bx1; ++bx) active[by * blocks_x + bx] = true;
     }
   }
-  const std::int32_t kFar = INT32_MAX;
-  const auto visit = [&](int x, int y, const int (*offsets)[2], int n_offsets) {
-    if (!active[(y >> kBlockShift) * blocks_x + (x >> kBlockShift)]) return;
-    std::uint16_t& cur = nearest_[static_cast<std::size_t>(y * w_ + x)];
-    std::int32_t cur_d = cur == kNoCell ? kFar : Dist2(cells_[cur], x, y);
-    if (cur_d == 0) return;  // an obstacle cell is its own nearest
-    for (int k = 0; k < n_offsets; ++k) {
-      const int nx = x + offsets[k][0], ny = y + offsets[k][1];
-      if (nx < 0 || ny < 0 || nx >= w_ || ny >= h_) continue;
-      const std::uint16_t cand = nearest_[static_cast<std::size_t>(ny * w_ + nx)];
-      if (cand == kNoCell || cand == cur) continue;
-      const std::int32_t d = Dist2(cells_[cand], x, y);
-      if (d < cur_d) cur = cand, cur_d = d;
-    }
-  };
-  static constexpr int kForward[4][2] = {{-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
-  static constexpr int kBackward[4][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}};
-  static constexpr int kRight[1][2] = {{1, 0}};
-  static constexpr int kLeft[1][2] = {{-1, 0}};
+  const SeedTable table{nearest_.data(), cells_.data(), w_, h_};
   for (int y = 0; y < h_; ++y) {
-    for (int x = 0; x < w_; ++x) visit(x, y, kForward, 4);
-    for (int x = w_ - 1; x >= 0; --x) visit(x, y, kRight, 1);
+    const bool* row = active + (y >> kBlockShift) * blocks_x;
+    table.SweepRow(y, +1, kForward, y > 0, row, blocks_x);
+    table.SweepRow(y, -1, kRight, true, row, blocks_x);
   }
   for (int y = h_ - 1; y >= 0; --y) {
-    for (int x = w_ - 1; x >= 0; --x) visit(x, y, kBackward, 4);
-    for (int x = 0; x < w_; ++x) visit(x, y, kLeft, 1);
+    const bool* row = active + (y >> kBlockShift) * blocks_x;
+    table.SweepRow(y, -1, kBackward, y < h_ - 1, row, blocks_x);
+    table.SweepRow(y, +1, kLeft, true, row, blocks_x);
   }
+  // Cut at the bound (inactive blocks hold kNoCell already).
   for (int y = 0; y < h_; ++y) {
-    for (int x = 0; x < w_; ++x) {
-      std::uint16_t& k = nearest_[static_cast<std::size_t>(y * w_ + x)];
-      if (k != kNoCell && Dist2(cells_[k], x, y) > bound2) k = kNoCell;
+    const bool* row = active + (y >> kBlockShift) * blocks_x;
+    for (int bx = 0; bx < blocks_x; ++bx) {
+      if (!row[bx]) continue;
+      const int x0 = bx << kBlockShift, x1 = (x0 + kBlockCells < w_ ? x0 + kBlockCells : w_);
+      for (int x = x0; x < x1; ++x) {
+        std::uint16_t& k = nearest_[static_cast<std::size_t>(y * w_ + x)];
+        if (k != kNoCell && Dist2(cells_[k], x, y) > bound2) k = kNoCell;
+      }
     }
   }
   if (stats != nullptr) *stats = st;

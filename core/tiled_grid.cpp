@@ -1,7 +1,6 @@
 #include "core/tiled_grid.hpp"
 
 #include "core/assert.hpp"
-#include "core/cell_line.hpp"
 
 namespace dpcr {
 TiledGrid::TiledGrid(TilePool* pool, Span<TileId> index, int tiles_x, int tiles_y)
@@ -101,34 +100,66 @@ bool TiledGrid::Reserve(CellIndex c, std::uint32_t stamp) {
 
 TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::int16_t delta, std::int16_t lo,
                                                   std::int16_t hi, std::uint32_t stamp) {
+  // TraceCells' Bresenham walk (same cells, same order), cut into runs of cells in one tile: the
+  // tile lookup, allocation and stamp check happen once per run, and inside a run the walk moves
+  // tile-local coordinates (a row of "updated" bits is one word: bit lx of updated[ly]).
+  static_assert(kTileSide == 32, "one 32-bit word of updated bits per tile row");
   SegmentStats st;
-  // The tile of the previous cell: a ray crosses few tiles, so most cells skip the lookup.
-  std::int32_t cur_tx = 0, cur_ty = 0;
-  bool have_tile = false;
-  Tile* tile = nullptr;
-  TraceCells(a, b, [&](CellIndex c) {
+  std::int32_t dx = b.x - a.x;
+  std::int32_t dy = b.y - a.y;
+  const std::int32_t sx = dx >= 0 ? 1 : -1;
+  const std::int32_t sy = dy >= 0 ? 1 : -1;
+  dx = dx >= 0 ? dx : -dx;
+  dy = dy >= 0 ? dy : -dy;
+  std::int32_t err = dx - dy;
+  // Every Bresenham step moves one cell along the major axis: max(dx, dy) cells, b excluded.
+  std::int32_t left = dx > dy ? dx : dy;
+  CellIndex c = a;
+  while (left > 0) {
     const std::int32_t tx = (c.x >> 5) - origin_tile_.x;
     const std::int32_t ty = (c.y >> 5) - origin_tile_.y;
-    if (!have_tile || tx != cur_tx || ty != cur_ty) {
-      if (static_cast<std::uint32_t>(tx) >= static_cast<std::uint32_t>(tiles_x_) ||
-          static_cast<std::uint32_t>(ty) >= static_cast<std::uint32_t>(tiles_y_)) {
-        ++st.out_of_box;  // the box is convex: the ray never comes back
-        return false;
+    if (static_cast<std::uint32_t>(tx) >= static_cast<std::uint32_t>(tiles_x_) ||
+        static_cast<std::uint32_t>(ty) >= static_cast<std::uint32_t>(tiles_y_)) {
+      ++st.out_of_box;  // the box is convex: the ray never comes back
+      break;
+    }
+    Tile* tile = TileForWrite(ty * tiles_x_ + tx);
+    if (tile != nullptr && stamp != 0 && tile->stamp != stamp) {
+      for (std::uint32_t& word : tile->updated) word = 0;
+      tile->stamp = stamp;
+    }
+    const std::int32_t base_x = c.x - (c.x & 31), base_y = c.y - (c.y & 31);
+    std::int32_t lx = c.x & 31, ly = c.y & 31;
+    int run = 0;
+    do {
+      if (tile != nullptr) {
+        const std::uint32_t bit = 1u << lx;
+        std::uint32_t& word = tile->updated[ly];
+        if (stamp == 0) {
+          ApplyDelta(&tile->cells[(ly << 5) | lx], delta, lo, hi, settle_at_bounds_);
+        } else if ((word & bit) == 0) {
+          word |= bit;
+          ApplyDelta(&tile->cells[(ly << 5) | lx], delta, lo, hi, settle_at_bounds_);
+        }
       }
-      cur_tx = tx;
-      cur_ty = ty;
-      have_tile = true;
-      tile = TileForWrite(ty * tiles_x_ + tx);
+      ++run;
+      const std::int32_t e2 = 2 * err;
+      if (e2 > -dy) {
+        err -= dy;
+        lx += sx;
+      }
+      if (e2 < dx) {
+        err += dx;
+        ly += sy;
+      }
+    } while (--left > 0 && static_cast<std::uint32_t>(lx) < 32u && static_cast<std::uint32_t>(ly) < 32u);
+    if (tile != nullptr) {
+      st.applied += run;
+    } else {
+      st.dropped_pool_full += run;  // nothing is freed while a scan is inserted: no retry
     }
-    if (tile == nullptr) {
-      ++st.dropped_pool_full;  // nothing is freed while a scan is inserted: no retry
-      return true;
-    }
-    ++st.applied;
-    const int offset = ((c.y & 31) << 5) | (c.x & 31);
-    if (stamp == 0 || MarkOnce(tile, offset, stamp)) ApplyDelta(&tile->cells[offset], delta, lo, hi, settle_at_bounds_);
-    return true;
-  });
+    c = CellIndex{base_x + lx, base_y + ly};
+  }
   return st;
 }
 

@@ -1,58 +1,68 @@
 #include "host_sim/carmen/carmen_reader.hpp"
 
+#include <charconv>
 #include <cmath>
-#include <sstream>
+#include <system_error>
 
 namespace dpcr::carmen {
 namespace {
 
 constexpr float kDegToRad = dpcr::kPi / 180.0f;
 
+bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
+
+// The whitespace-separated words of one line, as views into it (no copies), parsed on demand.
 class Tokens {
  public:
-  Tokens(const std::string& text, long line) : line_(line) {
-    std::istringstream s(text);
-    std::string t;
-    while (s >> t) tokens_.push_back(t);
+  Tokens(const std::string& text, long line, std::vector<std::string_view>* storage) : tokens_(*storage), line_(line) {
+    tokens_.clear();
+    const char* p = text.data();
+    const char* const end = p + text.size();
+    while (p < end) {
+      while (p < end && IsSpace(*p)) ++p;
+      const char* const word = p;
+      while (p < end && !IsSpace(*p)) ++p;
+      if (p > word) tokens_.emplace_back(word, static_cast<std::size_t>(p - word));
+    }
   }
   std::size_t size() const { return tokens_.size(); }
-  std::size_t remaining() const { return tokens_.size() - next_; }
-  const std::string& Word(const char* what) {
+  std::string_view Kind() const { return tokens_.empty() ? std::string_view() : tokens_[0]; }
+  std::string_view Word(const char* what) {
     if (next_ >= tokens_.size()) throw CarmenError(line_, std::string("line ends before ") + what);
     return tokens_[next_++];
   }
+  // The whole word as a finite decimal number (correctly rounded, as strtod).
   double Number(const char* what) {
-    const std::string& w = Word(what);
-    try {
-      std::size_t used = 0;
-      const double v = std::stod(w, &used);
-      if (used != w.size() || !std::isfinite(v)) throw std::invalid_argument(w);
-      return v;
-    } catch (const std::exception&) {
-      throw CarmenError(line_, std::string("bad ") + what + " '" + w + "'");
+    const std::string_view w = Word(what);
+    const char* first = w.data();
+    const char* const last = first + w.size();
+    if (first < last && *first == '+') ++first;  // strtod's optional sign, which from_chars lacks
+    double v = 0.0;
+    const std::from_chars_result r = std::from_chars(first, last, v);
+    if (r.ec != std::errc() || r.ptr != last || !std::isfinite(v)) {
+      throw CarmenError(line_, std::string("bad ") + what + " '" + std::string(w) + "'");
     }
+    return v;
   }
   float Float(const char* what) { return static_cast<float>(Number(what)); }
   long Count(const char* what, long max) {
     const double v = Number(what);
     if (v < 0 || v > static_cast<double>(max) || v != std::floor(v)) {
-      throw CarmenError(line_, std::string("bad ") + what + " " + tokens_[next_ - 1]);
+      throw CarmenError(line_, std::string("bad ") + what + " " + std::string(tokens_[next_ - 1]));
     }
     return static_cast<long>(v);
   }
   std::int64_t Stamp(const char* what, std::string* text) {
-    const std::string& w = Word(what);
-    try {
-      *text = w;
-      return ParseStampMicros(w);
-    } catch (const std::exception&) {
-      throw CarmenError(line_, std::string("bad ") + what + " '" + w + "'");
-    }
+    const std::string_view w = Word(what);
+    std::int64_t micros = 0;
+    if (!ParseStampMicros(w, &micros)) throw CarmenError(line_, std::string("bad ") + what + " '" + std::string(w) + "'");
+    text->assign(w.data(), w.size());
+    return micros;
   }
   long line() const { return line_; }
 
  private:
-  std::vector<std::string> tokens_;
+  std::vector<std::string_view>& tokens_;
   std::size_t next_ = 1;  // token 0 is the message name
   long line_;
 };
@@ -114,23 +124,40 @@ void ParseRobotLaser(Tokens& t, LaserRecord* r) {
 CarmenError::CarmenError(long line, const std::string& reason)
     : std::runtime_error("line " + std::to_string(line) + ": " + reason), line_(line) {}
 
-std::int64_t ParseStampMicros(const std::string& text) {
+bool ParseStampMicros(std::string_view text, std::int64_t* micros) {
+  // 1-12 digits (seconds: no int64 overflow), optionally '.' and at most 9 more digits; rounded
+  // to the microsecond (logs give 6 decimals; more are tolerated).
   const std::size_t dot = text.find('.');
-  const std::string whole = text.substr(0, dot);
-  std::string frac = dot == std::string::npos ? "" : text.substr(dot + 1);
-  if (whole.empty() || whole.find_first_not_of("0123456789") != std::string::npos ||
-      frac.find_first_not_of("0123456789") != std::string::npos || frac.size() > 9) {
-    throw std::invalid_argument("not a timestamp: " + text);
+  const std::string_view whole = text.substr(0, dot);
+  const std::string_view frac = dot == std::string_view::npos ? std::string_view() : text.substr(dot + 1);
+  if (whole.empty() || whole.size() > 12 || frac.size() > 9) return false;
+  std::int64_t seconds = 0;
+  for (const char c : whole) {
+    if (c < '0' || c > '9') return false;
+    seconds = seconds * 10 + (c - '0');
   }
-  // Round to the microsecond (logs give 6 decimals; more are tolerated).
-  while (frac.size() < 7) frac += '0';
-  std::int64_t micros = std::stoll(frac.substr(0, 6));
-  if (frac[6] >= '5') ++micros;
-  return std::stoll(whole) * 1000000 + micros;
+  std::int64_t us = 0;
+  for (std::size_t i = 0; i < 7; ++i) {
+    const char c = i < frac.size() ? frac[i] : '0';
+    if (c < '0' || c > '9') return false;
+    if (i < 6) us = us * 10 + (c - '0');
+    if (i == 6 && c >= '5') ++us;
+  }
+  for (std::size_t i = 7; i < frac.size(); ++i) {
+    if (frac[i] < '0' || frac[i] > '9') return false;
+  }
+  *micros = seconds * 1000000 + us;
+  return true;
+}
+
+std::int64_t ParseStampMicros(const std::string& text) {
+  std::int64_t micros = 0;
+  if (!ParseStampMicros(std::string_view(text), &micros)) throw std::invalid_argument("not a timestamp: " + text);
+  return micros;
 }
 
 bool CarmenReader::Next(Record* out) {
-  std::string text;
+  std::string& text = line_;  // reused: no allocation per line once it has grown
   while (std::getline(in_, text)) {
     const long line = ++counters_.lines;
     if (!text.empty() && text.back() == '\r') text.pop_back();
@@ -140,21 +167,21 @@ bool CarmenReader::Next(Record* out) {
       ++counters_.comments;
       continue;
     }
-    Tokens t(text, line);
-    std::istringstream head(text);
-    std::string kind;
-    head >> kind;
+    Tokens t(text, line, &tokens_);
+    const std::string_view kind = t.Kind();
     if (kind == "FLASER" || kind == "ROBOTLASER1") {
       out->kind = Record::Kind::kLaser;
-      out->laser = LaserRecord{};
-      out->laser.line = line;
+      // Field by field, so that ranges_m and stamp_text keep their capacity from record to record.
+      LaserRecord& laser = out->laser;
+      laser.line = line;
+      laser.max_range_m = 0.0f;
       if (kind == "FLASER") {
-        ParseFlaser(t, &out->laser);
+        ParseFlaser(t, &laser);
       } else {
-        ParseRobotLaser(t, &out->laser);
+        ParseRobotLaser(t, &laser);
       }
-      if (out->laser.stamp_us < last_laser_stamp_us_) ++counters_.laser_steps_back;
-      last_laser_stamp_us_ = out->laser.stamp_us;
+      if (laser.stamp_us < last_laser_stamp_us_) ++counters_.laser_steps_back;
+      last_laser_stamp_us_ = laser.stamp_us;
       ++counters_.laser_records;
       return true;
     }
@@ -165,18 +192,17 @@ bool CarmenReader::Next(Record* out) {
       out->odom.line = line;
       out->odom.pose = ReadPose(t, "odometry pose");
       for (const char* what : {"tv", "rv", "accel"}) t.Number(what);
-      std::string stamp_text;
-      out->odom.stamp_us = t.Stamp("ipc_timestamp", &stamp_text);
+      out->odom.stamp_us = t.Stamp("ipc_timestamp", &odom_stamp_text_);
       ++counters_.odom_records;
       return true;
     }
     if (kind == "PARAM") {
-      const std::string& name = t.Word("parameter name");
+      const std::string_view name = t.Word("parameter name");
       if (name == "robot_frontlaser_offset") front_laser_offset_m_ = t.Float("laser offset");
       continue;
     }
-    if (kind.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") != std::string::npos) {
-      throw CarmenError(line, "not a CARMEN message: '" + kind + "'");
+    if (kind.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") != std::string_view::npos) {
+      throw CarmenError(line, "not a CARMEN message: '" + std::string(kind) + "'");
     }
     ++counters_.other_messages;
   }

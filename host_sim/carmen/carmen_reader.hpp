@@ -8,6 +8,7 @@
 #include <istream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/pose2.hpp"
@@ -72,9 +73,15 @@ class CarmenReader {
   ReaderCounters counters_;
   float front_laser_offset_m_ = 0.0f;
   std::int64_t last_laser_stamp_us_ = INT64_MIN;
+  // Reused from line to line (parsing allocates nothing once they have grown).
+  std::string line_;
+  std::vector<std::string_view> tokens_;
+  std::string odom_stamp_text_;
 };
 
 // "976052857.337530" -> 976052857337530; throws std::invalid_argument on anything else.
 std::int64_t ParseStampMicros(const std::string& text);
+// The same without exceptions: false on anything but digits[.digits] (at most 9 decimals).
+bool ParseStampMicros(std::string_view text, std::int64_t* micros);
 
 }  // namespace dpcr::carmen

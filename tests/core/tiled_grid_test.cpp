@@ -3,6 +3,7 @@
 
 #include <memory>
 
+#include "core/cell_line.hpp"
 #include "core/tiled_grid.hpp"
 
 using dpcr::CellIndex;
@@ -84,4 +85,52 @@ TEST_CASE("A full tile pool drops the update and says so") {
   REQUIRE(grid.Get(CellIndex{40, 0}) == dpcr::kUnknownCell);
   REQUIRE(pool->failed_allocations() == 1);
   REQUIRE(grid.Update(CellIndex{1, 1}, 10, -100, 100, 0) == Status::kOk);  // existing tile still works
+}
+
+TEST_CASE("UpdateSegment equals per-cell Update along TraceCells (random segments, box exits, full pool)") {
+  // Oracle: the tile-run walk must touch the same cells in the same order as TraceCells + Update.
+  auto pool_a = std::make_unique<dpcr::TilePoolStorage<12>>();
+  auto pool_b = std::make_unique<dpcr::TilePoolStorage<12>>();
+  dpcr::TiledGridStorage<4, 4> fast(pool_a.get());
+  dpcr::TiledGridStorage<4, 4> slow(pool_b.get());
+  fast.Reset(CellIndex{-2, -2});
+  slow.Reset(CellIndex{-2, -2});
+  std::uint32_t seed = 12345;
+  int dropped = 0, exits = 0;
+  const auto next = [&seed](int lo, int hi) {
+    seed = seed * 1664525u + 1013904223u;
+    return lo + static_cast<int>((seed >> 8) % static_cast<std::uint32_t>(hi - lo + 1));
+  };
+  for (int i = 0; i < 4000; ++i) {
+    const std::uint32_t stamp = static_cast<std::uint32_t>(i / 7);  // several segments per "scan"; 0 = no rule
+    const CellIndex a{next(-64, 63), next(-64, 63)};
+    const CellIndex b{next(-90, 90), next(-90, 90)};
+    const std::int16_t delta = static_cast<std::int16_t>(next(-400, 400));
+    const dpcr::TiledGrid::SegmentStats s = fast.UpdateSegment(a, b, delta, -3000, 3000, stamp);
+    dpcr::TiledGrid::SegmentStats o;
+    dpcr::TraceCells(a, b, [&](CellIndex c) {
+      const Status r = slow.Update(c, delta, -3000, 3000, stamp);
+      if (r == Status::kOutOfBounds) {
+        ++o.out_of_box;
+        return false;
+      }
+      if (r == Status::kPoolFull) {
+        ++o.dropped_pool_full;
+      } else {
+        ++o.applied;
+      }
+      return true;
+    });
+    REQUIRE(s.applied == o.applied);
+    REQUIRE(s.out_of_box == o.out_of_box);
+    REQUIRE(s.dropped_pool_full == o.dropped_pool_full);
+    dropped += s.dropped_pool_full;
+    exits += s.out_of_box;
+  }
+  REQUIRE(dropped > 0);  // both the full pool and box exits were exercised
+  REQUIRE(exits > 0);
+  REQUIRE(pool_a->used() == pool_b->used());
+  for (int y = -64; y < 64; ++y) {
+    for (int x = -64; x < 64; ++x) REQUIRE(fast.Get(CellIndex{x, y}) == slow.Get(CellIndex{x, y}));
+  }
 }

@@ -18,8 +18,11 @@ int main(int argc, char** argv) {
   r->add_option("--method", reg.method, "improved | classic | build (callgrind mode; build = reference builds)");
   r->add_option("--figure", reg.figure_path, "write a PNG of one registration (submap, lines, scans)");
   dpcr_bench::MapperBenchOptions map;
-  CLI::App* m = app.add_subcommand("mapper", "cost of Mapper::AddScan on a CARMEN log (parsed beforehand)");
-  m->add_option("--clf", map.clf_path, "CARMEN log")->capture_default_str();
+  CLI::App* m = app.add_subcommand("mapper", "cost of Mapper::AddScan on a CARMEN log or a simulated run (prepared beforehand)");
+  m->add_option("--clf", map.clf_path, "CARMEN log (building profile)")->capture_default_str();
+  m->add_option("--world", map.world, "simulate this world instead (apartment|office|hall|FILE; vacuum profile, as dpcr-sim)");
+  m->add_option("--minutes", map.minutes, "simulated run length (with --world)")->capture_default_str();
+  m->add_option("--seed", map.seed, "simulation seed (with --world)")->capture_default_str();
   m->add_option("--scans", map.scans, "the first N laser scans (0: all)");
   m->add_option("--max-range", map.max_range_m, "ignore returns farther than this (m)")->capture_default_str();
   m->add_option("--callgrind-stride", map.callgrind_stride,

@@ -6,27 +6,33 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <vector>
 
 #include "core/mapper.hpp"
 #include "host_sim/carmen/carmen_reader.hpp"
+#include "host_sim/sim/simulation.hpp"
+#include "host_sim/sim/world.hpp"
 
 namespace dpcr_bench {
 namespace {
 
-using MapperType = dpcr::Mapper<dpcr::BuildingProfile>;
-
+// What the mapper is fed, in order: before scan i, odometry[odometry_end[i - 1] .. odometry_end[i]).
+template <class MapperType>
 struct Input {
-  float laser_offset_m = 0.0f;
-  std::vector<dpcr::OdometrySample> odometry;  // one per scan: the pose logged with it
-  std::vector<MapperType::ScanType> scans;
-  std::vector<std::string> stamps;
+  dpcr::MapperConfig config;
+  std::vector<dpcr::OdometrySample> odometry;
+  std::vector<std::size_t> odometry_end;
+  std::vector<typename MapperType::ScanType> scans;
+  std::vector<std::string> stamps;  // TUM stamps
 };
 
 // Same feeding as dpcr-replay --carmen (odometry "laser", decimation beyond kMaxBeams).
-void Load(const MapperBenchOptions& o, Input* in) {
+template <class MapperType>
+void LoadCarmen(const MapperBenchOptions& o, Input<MapperType>* in) {
+  using Profile = typename MapperType::ProfileType;
   std::ifstream file(o.clf_path);
   if (!file) throw std::runtime_error(o.clf_path + ": cannot open");
   dpcr::carmen::CarmenReader reader(file);
@@ -38,10 +44,11 @@ void Load(const MapperBenchOptions& o, Input* in) {
     s.stamp_us = laser.stamp_us;
     s.pose = laser.odom_pose;
     in->odometry.push_back(s);
-    MapperType::ScanType scan;
+    in->odometry_end.push_back(in->odometry.size());
+    typename MapperType::ScanType scan;
     scan.stamp_us = laser.stamp_us;
     const std::size_t n = laser.ranges_m.size();
-    const std::size_t stride = (n + dpcr::BuildingProfile::kMaxBeams - 1) / dpcr::BuildingProfile::kMaxBeams;
+    const std::size_t stride = (n + Profile::kMaxBeams - 1) / Profile::kMaxBeams;
     for (std::size_t i = 0; i < n; i += stride) {
       dpcr::Beam b;
       b.angle_rad = laser.angle_min_rad + static_cast<float>(i) * laser.angle_increment_rad;
@@ -52,18 +59,42 @@ void Load(const MapperBenchOptions& o, Input* in) {
     in->stamps.push_back(laser.stamp_text);
     if (o.scans > 0 && static_cast<int>(in->scans.size()) == o.scans) break;
   }
-  in->laser_offset_m = reader.front_laser_offset_m();
+  in->config.lidar.max_range_m = o.max_range_m;
+  in->config.lidar.mount = dpcr::Pose2{reader.front_laser_offset_m(), 0.0f, 0.0f};
 }
 
-}  // namespace
+// Same feeding as dpcr-sim (100 Hz wheel odometry between 10 Hz revolutions).
+template <class MapperType>
+void LoadSimulation(const MapperBenchOptions& o, Input<MapperType>* in) {
+  const bool builtin = std::filesystem::path(o.world).extension().empty() && !std::filesystem::exists(o.world);
+  const dpcr::sim::World world = builtin ? dpcr::sim::LoadBuiltinWorld(o.world) : dpcr::sim::LoadWorldFile(o.world);
+  dpcr::sim::SimConfig sim_config;
+  sim_config.seed = o.seed;
+  sim_config.duration_min = o.minutes;
+  dpcr::sim::Simulation sim(world, sim_config);
+  dpcr::sim::SimEvent event;
+  while (sim.Step(&event)) {
+    if (event.type == dpcr::sim::SimEventType::kOdometry) {
+      in->odometry.push_back(event.odometry);
+      continue;
+    }
+    in->odometry_end.push_back(in->odometry.size());
+    in->scans.push_back(event.scan);
+    char stamp[32];
+    std::snprintf(stamp, sizeof(stamp), "%.6f", static_cast<double>(event.scan.stamp_us) * 1e-6);
+    in->stamps.push_back(stamp);
+    if (o.scans > 0 && static_cast<int>(in->scans.size()) == o.scans) break;
+  }
+  in->config.lidar.max_range_m = static_cast<float>(sim_config.lidar.max_range_m);
+  in->config.lidar.mount = dpcr::Pose2{static_cast<float>(sim_config.lidar.mount.x),
+                                       static_cast<float>(sim_config.lidar.mount.y),
+                                       static_cast<float>(sim_config.lidar.mount.theta)};
+}
 
-int RunMapperBench(const MapperBenchOptions& o) {
-  static Input input;
-  Load(o, &input);
+template <class MapperType>
+int Run(const MapperBenchOptions& o, Input<MapperType>& input) {
   static MapperType mapper;
-  dpcr::MapperConfig config;
-  config.lidar.max_range_m = o.max_range_m;
-  config.lidar.mount = dpcr::Pose2{input.laser_offset_m, 0.0f, 0.0f};
+  dpcr::MapperConfig config = input.config;
   if (o.submap_miss_range_m >= 0.0f) config.front_end.submap_miss_range_m = o.submap_miss_range_m;
   if (o.reference_max_distance_m > 0.0f) {
     config.front_end.submap_reference.max_distance_m = o.reference_max_distance_m;
@@ -82,8 +113,9 @@ int RunMapperBench(const MapperBenchOptions& o) {
   std::vector<dpcr::Pose2> poses;
   poses.reserve(input.scans.size());
   const auto start = std::chrono::steady_clock::now();
+  std::size_t next_odometry = 0;
   for (std::size_t i = 0; i < input.scans.size(); ++i) {
-    mapper.AddOdometry(input.odometry[i]);
+    for (; next_odometry < input.odometry_end[i]; ++next_odometry) mapper.AddOdometry(input.odometry[next_odometry]);
     const bool counted = o.callgrind_stride > 0 && i % static_cast<std::size_t>(o.callgrind_stride) == 0;
     const auto t0 = std::chrono::steady_clock::now();
     if (counted) CALLGRIND_TOGGLE_COLLECT;
@@ -113,6 +145,21 @@ int RunMapperBench(const MapperBenchOptions& o) {
               c.first_registrations, c.first_rejected, c.second_registrations, c.second_rejected, c.submap_line_builds,
               c.region_line_builds, mapper.region_count());
   return 0;
+}
+
+}  // namespace
+
+int RunMapperBench(const MapperBenchOptions& o) {
+  if (!o.world.empty()) {
+    using MapperType = dpcr::Mapper<dpcr::VacuumProfile>;
+    static Input<MapperType> input;
+    LoadSimulation(o, &input);
+    return Run(o, input);
+  }
+  using MapperType = dpcr::Mapper<dpcr::BuildingProfile>;
+  static Input<MapperType> input;
+  LoadCarmen(o, &input);
+  return Run(o, input);
 }
 
 }  // namespace dpcr_bench

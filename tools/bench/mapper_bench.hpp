@@ -1,5 +1,6 @@
-// `dpcr-bench mapper`: the cost of Mapper::AddScan on a CARMEN log (docs/front-end-cost.md).
-// The log is parsed into memory first; only AddScan is timed or counted.
+// `dpcr-bench mapper`: the cost of Mapper::AddScan on a CARMEN log (building profile) or on a
+// simulated vacuum run (--world, vacuum profile, host_sim/sim) (docs/front-end-cost.md).
+// The input is parsed or simulated into memory first; only AddScan is timed or counted.
 #pragma once
 
 #include <string>
@@ -8,6 +9,10 @@ namespace dpcr_bench {
 
 struct MapperBenchOptions {
   std::string clf_path = "/work/shared/data/intel.clf";
+  // A simulated world instead of the log (builtin name or world file), as dpcr-sim maps it.
+  std::string world;
+  double minutes = 5.0;
+  unsigned long long seed = 1;
   int scans = 0;  // the first N laser scans (0: all)
   float max_range_m = 20.0f;  // as dpcr-replay
   // Callgrind mode (> 0): every k-th scan's AddScan is bracketed by collection toggles and
