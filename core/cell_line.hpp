@@ -7,29 +7,39 @@
 
 namespace dpcr {
 
+// Bresenham's integer walk from a towards b: each Step moves one cell, along the major axis
+// always and along the minor one when the error says so; b is reached after steps() steps.
+struct BresenhamWalk {
+  std::int32_t dx, dy, sx, sy, err;
+  BresenhamWalk(CellIndex a, CellIndex b)
+      : dx(b.x >= a.x ? b.x - a.x : a.x - b.x),
+        dy(b.y >= a.y ? b.y - a.y : a.y - b.y),
+        sx(b.x >= a.x ? 1 : -1),
+        sy(b.y >= a.y ? 1 : -1),
+        err(dx - dy) {}
+  std::int32_t steps() const { return dx > dy ? dx : dy; }
+  void Step(std::int32_t* x, std::int32_t* y) {
+    const std::int32_t e2 = 2 * err;
+    if (e2 > -dy) {
+      err -= dy;
+      *x += sx;
+    }
+    if (e2 < dx) {
+      err += dx;
+      *y += sy;
+    }
+  }
+};
+
 // Visits the cells of the segment a -> b (Bresenham), excluding b; stops early when the
 // visitor returns false. Header-only so the per-cell call inlines.
 template <typename Visitor>
 void TraceCells(CellIndex a, CellIndex b, Visitor&& visit) {
-  std::int32_t dx = b.x - a.x;
-  std::int32_t dy = b.y - a.y;
-  const std::int32_t sx = dx >= 0 ? 1 : -1;
-  const std::int32_t sy = dy >= 0 ? 1 : -1;
-  dx = dx >= 0 ? dx : -dx;
-  dy = dy >= 0 ? dy : -dy;
-  std::int32_t err = dx - dy;
+  BresenhamWalk walk(a, b);
   CellIndex c = a;
   while (c != b) {
     if (!visit(c)) return;
-    const std::int32_t e2 = 2 * err;
-    if (e2 > -dy) {
-      err -= dy;
-      c.x += sx;
-    }
-    if (e2 < dx) {
-      err += dx;
-      c.y += sy;
-    }
+    walk.Step(&c.x, &c.y);
   }
 }
 

@@ -1,6 +1,7 @@
 #include "core/tiled_grid.hpp"
 
 #include "core/assert.hpp"
+#include "core/cell_line.hpp"
 
 namespace dpcr {
 TiledGrid::TiledGrid(TilePool* pool, Span<TileId> index, int tiles_x, int tiles_y)
@@ -105,15 +106,9 @@ TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::
   // tile-local coordinates (a row of "updated" bits is one word: bit lx of updated[ly]).
   static_assert(kTileSide == 32, "one 32-bit word of updated bits per tile row");
   SegmentStats st;
-  std::int32_t dx = b.x - a.x;
-  std::int32_t dy = b.y - a.y;
-  const std::int32_t sx = dx >= 0 ? 1 : -1;
-  const std::int32_t sy = dy >= 0 ? 1 : -1;
-  dx = dx >= 0 ? dx : -dx;
-  dy = dy >= 0 ? dy : -dy;
-  std::int32_t err = dx - dy;
+  BresenhamWalk walk(a, b);
   // Every Bresenham step moves one cell along the major axis: max(dx, dy) cells, b excluded.
-  std::int32_t left = dx > dy ? dx : dy;
+  std::int32_t left = walk.steps();
   CellIndex c = a;
   while (left > 0) {
     const std::int32_t tx = (c.x >> 5) - origin_tile_.x;
@@ -143,15 +138,7 @@ TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::
         }
       }
       ++run;
-      const std::int32_t e2 = 2 * err;
-      if (e2 > -dy) {
-        err -= dy;
-        lx += sx;
-      }
-      if (e2 < dx) {
-        err += dx;
-        ly += sy;
-      }
+      walk.Step(&lx, &ly);
     } while (--left > 0 && static_cast<std::uint32_t>(lx) < 32u && static_cast<std::uint32_t>(ly) < 32u);
     if (tile != nullptr) {
       st.applied += run;

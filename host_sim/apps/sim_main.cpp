@@ -33,8 +33,7 @@ int Run(const Options& opt) {
   using MapperType = dpcr::Mapper<dpcr::VacuumProfile>;
   static MapperType mapper;  // ~2 MiB: static storage, as on the robot
 
-  const bool builtin = std::filesystem::path(opt.world).extension().empty() && !std::filesystem::exists(opt.world);
-  const dpcr::sim::World world = builtin ? dpcr::sim::LoadBuiltinWorld(opt.world) : dpcr::sim::LoadWorldFile(opt.world);
+  const dpcr::sim::World world = dpcr::sim::LoadWorld(opt.world);
   dpcr::sim::SimConfig sim_config;
   sim_config.seed = opt.seed;
   sim_config.duration_min = opt.minutes;

@@ -86,6 +86,8 @@ std::vector<std::string> BuiltinWorldNames();
 // Text world (any extension but .pgm) or PGM floor plan (.pgm; resolution and origin from a
 // ROS map_server .yaml beside it when present, else 0.05 m and (0, 0)). WorldError on failure.
 World LoadWorldFile(const std::string& path);
+// What the apps' --world takes: a built-in name (no extension and no such file), else a file.
+World LoadWorld(const std::string& name_or_path);
 // Parses a text world; `source_name` prefixes error messages.
 World ParseWorldText(const std::string& text, const std::string& source_name);
 // PGM (P2 or P5) floor plan: pixels darker than half the max value are walls.

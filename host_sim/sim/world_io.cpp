@@ -1,6 +1,7 @@
 // World file parsers: the line-based text format (docs/world-format.md) and PGM floor plans.
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -216,6 +217,11 @@ World ParsePgmWorld(const std::string& bytes, const std::string& source_name, do
   if (world.segments.empty()) throw WorldError(source_name + ": PGM has no dark (wall) pixels");
   world.rooms.push_back(Room{"all", origin.x, origin.y, origin.x + w * resolution_m, origin.y + h * resolution_m});
   return world;
+}
+
+World LoadWorld(const std::string& name_or_path) {
+  const bool builtin = std::filesystem::path(name_or_path).extension().empty() && !std::filesystem::exists(name_or_path);
+  return builtin ? LoadBuiltinWorld(name_or_path) : LoadWorldFile(name_or_path);
 }
 
 World LoadWorldFile(const std::string& path) {

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <vector>
@@ -66,8 +65,7 @@ void LoadCarmen(const MapperBenchOptions& o, Input<MapperType>* in) {
 // Same feeding as dpcr-sim (100 Hz wheel odometry between 10 Hz revolutions).
 template <class MapperType>
 void LoadSimulation(const MapperBenchOptions& o, Input<MapperType>* in) {
-  const bool builtin = std::filesystem::path(o.world).extension().empty() && !std::filesystem::exists(o.world);
-  const dpcr::sim::World world = builtin ? dpcr::sim::LoadBuiltinWorld(o.world) : dpcr::sim::LoadWorldFile(o.world);
+  const dpcr::sim::World world = dpcr::sim::LoadWorld(o.world);
   dpcr::sim::SimConfig sim_config;
   sim_config.seed = o.seed;
   sim_config.duration_min = o.minutes;
