@@ -136,7 +136,7 @@ void FrontEnd::EnterRegion(bool first) {
   const RegionKey key = tracker_.current();
   for (int i = 0; i < region_count_; ++i) {
     if (s_.regions[static_cast<std::size_t>(i)].key == key) {
-      if (i != current_region_) previous_region_ = current_region_;
+      if (current_region_ >= 0 && i != current_region_) previous_region_ = current_region_;
       current_region_ = i;
       // Re-entering a known region: align the submap to it at once (paper: on region entry).
       if (config_.front_end.enable_registration) SecondRegistration();
@@ -147,6 +147,7 @@ void FrontEnd::EnterRegion(bool first) {
     // Evict nothing: the map stops growing; localisation goes on against the submap.
     ++counters_.region_pool_full;
     pool_full_ = true;
+    if (current_region_ >= 0) previous_region_ = current_region_;  // still a reference (ReferenceRegion)
     current_region_ = -1;
     return;
   }
