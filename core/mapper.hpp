@@ -107,7 +107,8 @@ class Mapper {
   RegistrationReferenceStorage<Profile::kSubmapSideCells, Profile::kSubmapSideCells, Profile::kReferenceCells,
                                Profile::kMaxLines>
       submap_reference_;
-  RegistrationReferenceStorage<kRegionCells, kRegionCells, Profile::kReferenceCells, Profile::kMaxLines> region_reference_;
+  RegistrationReferenceStorage<kRegionCells, kRegionCells, Profile::kReferenceCells, Profile::kMaxLines, false>
+      region_reference_;
   // Per-scan scratch, kept here so nothing of scan size lives on the stack.
   Point2 hits_[Profile::kMaxBeams];
   Point2 free_ends_[Profile::kMaxBeams];

@@ -84,7 +84,7 @@ RegistrationReference::RegistrationReference(Span<ObstacleCell> cells, Span<std:
                                              Span<RefitSums> refit, int max_w, int max_h)
     : cells_(cells), nearest_(nearest), scratch_(scratch), lines_(lines), refit_(refit), max_w_(max_w), max_h_(max_h) {
   DPCR_ASSERT(nearest.size() == static_cast<std::size_t>(max_w * max_h) && scratch.size() >= cells.size());
-  DPCR_ASSERT(refit.size() >= lines.size());
+  DPCR_ASSERT(refit.empty() || refit.size() >= lines.size());
   DPCR_ASSERT(cells.size() < kNoCell);
   DPCR_ASSERT(((max_w + kBlockCells - 1) >> kBlockShift) * ((max_h + kBlockCells - 1) >> kBlockShift) <= kMaxBlocks);
 }
@@ -211,6 +211,7 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
 }
 
 void RegistrationReference::BeginPointRefit() {
+  DPCR_ASSERT(!refit_.empty());
   for (std::size_t i = 0; i < line_count_; ++i) refit_[i] = RefitSums{};
 }
 

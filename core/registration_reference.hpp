@@ -53,7 +53,7 @@ class RegistrationReference {
   // position is not the grid's quantisation of the wall (up to half a cell per wall, which
   // registration would turn into a pose offset). Points are in the grid's world frame; a point
   // counts for the line of its nearest obstacle cell if it lies within `gate_m` of that line.
-  // Lines with fewer than `min_points` keep their cell fit.
+  // Lines with fewer than `min_points` keep their cell fit. Only for storage with point-refit sums.
   void BeginPointRefit();
   void AddRefitPoint(Point2 p, float gate_m);
   int EndPointRefit(int min_points);
@@ -91,8 +91,10 @@ class RegistrationReference {
   float res_ = 0.05f, inv_res_ = 20.0f;
 };
 
-// 256 x 256 window, 4096 cells, 512 lines: 128 KiB table + 40 KiB cells/scratch + 28 KiB lines.
-template <int kW, int kH, int kCells, int kLines>
+// 256 x 256 window, 4096 cells, 512 lines: 128 KiB table + 40 KiB cells/scratch + 28 KiB lines,
+// + 12 KiB of point-refit sums when kPointRefit (a reference built from a grid alone, e.g. a
+// regional map's, has no raw points to refit to and carries none).
+template <int kW, int kH, int kCells, int kLines, bool kPointRefit = true>
 class RegistrationReferenceStorage : public RegistrationReference {
   static_assert(kCells < kNoCell, "cell ids are 16-bit");
 
@@ -100,14 +102,14 @@ class RegistrationReferenceStorage : public RegistrationReference {
   RegistrationReferenceStorage()
       : RegistrationReference(Span<ObstacleCell>(cells_, kCells), Span<std::uint16_t>(nearest_, kW * kH),
                               Span<std::uint16_t>(scratch_, kCells), Span<LineFeature>(lines_, kLines),
-                              Span<RefitSums>(refit_, kLines), kW, kH) {}
+                              Span<RefitSums>(refit_, kPointRefit ? kLines : 0), kW, kH) {}
 
  private:
   ObstacleCell cells_[kCells];
   std::uint16_t nearest_[kW * kH];
   std::uint16_t scratch_[kCells];
   LineFeature lines_[kLines];
-  RefitSums refit_[kLines];
+  RefitSums refit_[kPointRefit ? kLines : 1];  // C++ has no empty arrays: one unused entry
 };
 
 }  // namespace dpcr

@@ -25,10 +25,6 @@ struct Options {
   bool odometry_only = false;
 };
 
-dpcr::Pose2 ToPose2(const dpcr::sim::Pose2d& p) {
-  return dpcr::Pose2{static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.theta)};
-}
-
 int Run(const Options& opt) {
   using MapperType = dpcr::Mapper<dpcr::VacuumProfile>;
   static MapperType mapper;  // ~2 MiB: static storage, as on the robot
@@ -40,8 +36,7 @@ int Run(const Options& opt) {
   dpcr::sim::Simulation sim(world, sim_config);
 
   dpcr::MapperConfig config;
-  config.lidar.max_range_m = static_cast<float>(sim_config.lidar.max_range_m);
-  config.lidar.mount = ToPose2(sim_config.lidar.mount);
+  config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
   config.front_end.enable_registration = !opt.odometry_only;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
 
@@ -66,7 +61,7 @@ int Run(const Options& opt) {
     }
     if (emitter && !emitter->AddScan(event.scan)) throw std::runtime_error("device emitter rejected a scan");
     dpcr::output::AddTimedScan(mapper, event.scan, &run);  // a SimScan is the vacuum mapper's scan type
-    run.ground_truth.push_back({event.scan.stamp_us, ToPose2(event.truth)});
+    run.ground_truth.push_back({event.scan.stamp_us, event.truth.ToPose2()});
     if ((run.estimate.size() & 63) == 0) progress.Update(static_cast<double>(event.time_us) / total_us);
   }
   progress.Done();

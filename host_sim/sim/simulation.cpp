@@ -95,4 +95,11 @@ bool Simulation::Step(SimEvent* out) {
   }
 }
 
+::dpcr::LidarConfig MapperLidarConfig(const SimConfig& config) {
+  ::dpcr::LidarConfig lidar;
+  lidar.max_range_m = static_cast<float>(config.lidar.max_range_m);
+  lidar.mount = config.lidar.mount.ToPose2();
+  return lidar;
+}
+
 }  // namespace dpcr::sim

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "core/capacity.hpp"
+#include "core/config.hpp"
 #include "core/scan.hpp"
 #include "host_sim/sim/coverage_planner.hpp"
 #include "host_sim/sim/motion.hpp"
@@ -25,6 +26,9 @@ struct SimConfig {
 };
 
 using SimScan = Scan<VacuumProfile::kMaxBeams>;
+
+// The mapper's lidar settings for this simulation's sensor (maximum range, mount pose).
+::dpcr::LidarConfig MapperLidarConfig(const SimConfig& config);
 
 enum class SimEventType { kOdometry, kScan };
 

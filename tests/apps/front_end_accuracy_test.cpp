@@ -17,12 +17,12 @@ using MapperType = dpcr::Mapper<dpcr::VacuumProfile>;
 dpcr::eval::AccuracyResult MapApartment(bool registration, double minutes) {
   auto mapper = std::make_unique<MapperType>();
   dpcr::MapperConfig config;
-  config.front_end.enable_registration = registration;
-  REQUIRE(mapper->Init(config) == dpcr::Status::kOk);
   dpcr::sim::SimConfig sim_config;
   sim_config.duration_min = minutes;
+  config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
+  config.front_end.enable_registration = registration;
+  REQUIRE(mapper->Init(config) == dpcr::Status::kOk);
   dpcr::sim::Simulation sim(dpcr::sim::LoadBuiltinWorld("apartment"), sim_config);
-  auto scan = std::make_unique<MapperType::ScanType>();
   dpcr::sim::SimEvent event;
   dpcr::eval::Trajectory estimate, truth;
   while (sim.Step(&event)) {
@@ -30,13 +30,9 @@ dpcr::eval::AccuracyResult MapApartment(bool registration, double minutes) {
       mapper->AddOdometry(event.odometry);
       continue;
     }
-    scan->stamp_us = event.scan.stamp_us;
-    scan->beams.clear();
-    for (const dpcr::Beam& b : event.scan.beams) REQUIRE(scan->beams.push_back(b) == dpcr::Status::kOk);
-    static_cast<void>(mapper->AddScan(*scan));
-    estimate.push_back({scan->stamp_us, mapper->pose()});
-    truth.push_back({scan->stamp_us, dpcr::Pose2{static_cast<float>(event.truth.x), static_cast<float>(event.truth.y),
-                                                 static_cast<float>(event.truth.theta)}});
+    static_cast<void>(mapper->AddScan(event.scan));  // a SimScan is the vacuum mapper's scan type
+    estimate.push_back({event.scan.stamp_us, mapper->pose()});
+    truth.push_back({event.scan.stamp_us, event.truth.ToPose2()});
   }
   return dpcr::eval::EvaluateAgainstGroundTruth(estimate, truth);
 }

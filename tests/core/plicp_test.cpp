@@ -30,6 +30,15 @@ std::vector<Segment> LRoom() {
   return w;
 }
 
+// A submap as the robot builds it: 10 noisy 450-beam scans from poses along a short arc.
+void InsertNoisyScans(GridFixture& f, const std::vector<Segment>& walls) {
+  for (int k = 0; k < 10; ++k) {
+    const Pose2 p{3.0f + 0.1f * static_cast<float>(k), 2.5f + 0.05f * static_cast<float>(k), 0.05f * static_cast<float>(k)};
+    dpcr_test::InsertScan(f, dpcr_test::SimulateScan(walls, p, 450, 0.02f, 10u + static_cast<unsigned>(k)), p,
+                          static_cast<std::uint32_t>(k + 1));
+  }
+}
+
 dpcr::Span<const Point2> SpanOf(const std::vector<Point2>& v) { return dpcr::Span<const Point2>(v.data(), v.size()); }
 
 float PosErr(Pose2 a, Pose2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
@@ -60,11 +69,7 @@ TEST_CASE("Improved PLICP recovers a known transform exactly on noiseless data")
 TEST_CASE("Both methods register a noisy scan against a ray-cast submap to 2 cm and 0.5 deg") {
   GridFixture f;
   const auto walls = LRoom();
-  for (int k = 0; k < 10; ++k) {
-    const Pose2 p{3.0f + 0.1f * static_cast<float>(k), 2.5f + 0.05f * static_cast<float>(k), 0.05f * static_cast<float>(k)};
-    dpcr_test::InsertScan(f, dpcr_test::SimulateScan(walls, p, 450, 0.02f, 10u + static_cast<unsigned>(k)), p,
-                          static_cast<std::uint32_t>(k + 1));
-  }
+  InsertNoisyScans(f, walls);
   REQUIRE(f.Build() == dpcr::Status::kOk);
   const Pose2 truth{4.1f, 3.0f, 0.55f};
   const auto scan = dpcr_test::SimulateScan(walls, truth, 450, 0.02f, 99);
@@ -181,11 +186,7 @@ TEST_CASE("Second registration: obstacle cells of one grid against the lines of 
 TEST_CASE("Improved PLICP converges from 40 seeded random starts within 0.3 m and 10 deg") {
   GridFixture f;
   const auto walls = LRoom();
-  for (int k = 0; k < 10; ++k) {
-    const Pose2 p{3.0f + 0.1f * static_cast<float>(k), 2.5f + 0.05f * static_cast<float>(k), 0.05f * static_cast<float>(k)};
-    dpcr_test::InsertScan(f, dpcr_test::SimulateScan(walls, p, 450, 0.02f, 10u + static_cast<unsigned>(k)), p,
-                          static_cast<std::uint32_t>(k + 1));
-  }
+  InsertNoisyScans(f, walls);
   REQUIRE(f.Build() == dpcr::Status::kOk);
   const Pose2 truth{4.1f, 3.0f, 0.55f};
   const auto scan = dpcr_test::SimulateScan(walls, truth, 450, 0.02f, 99);

@@ -83,32 +83,5 @@ NoisyCapture MakeNoisyLd06Capture(unsigned seed) {
   return c;
 }
 
-std::vector<Ld06Packet> DecodeAll(dpcr::Ld06Decoder* decoder, const std::vector<std::uint8_t>& bytes,
-                                  std::size_t chunk) {
-  std::vector<Ld06Packet> out;
-  for (std::size_t at = 0; at < bytes.size(); at += chunk) {
-    const std::size_t n = bytes.size() - at < chunk ? bytes.size() - at : chunk;
-    std::size_t used = 0;
-    while (used < n) {
-      used += decoder->Feed(bytes.data() + at + used, n - used);
-      if (decoder->has_packet()) out.push_back(decoder->packet());
-    }
-  }
-  return out;
-}
-
-std::vector<dpcr::Xv11Packet> DecodeAll(dpcr::Xv11Decoder* decoder, const std::vector<std::uint8_t>& bytes,
-                                        std::size_t chunk) {
-  std::vector<dpcr::Xv11Packet> out;
-  for (std::size_t at = 0; at < bytes.size(); at += chunk) {
-    const std::size_t n = bytes.size() - at < chunk ? bytes.size() - at : chunk;
-    std::size_t used = 0;
-    while (used < n) {
-      used += decoder->Feed(bytes.data() + at + used, n - used);
-      if (decoder->has_packet()) out.push_back(decoder->packet());
-    }
-  }
-  return out;
-}
 
 }  // namespace dpcr_test

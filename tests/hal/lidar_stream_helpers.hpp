@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "hal/ld06_decoder.hpp"
@@ -30,10 +31,19 @@ struct NoisyCapture {
 };
 NoisyCapture MakeNoisyLd06Capture(unsigned seed);
 
-// Decodes everything, feeding in chunks of `chunk` bytes.
-std::vector<dpcr::Ld06Packet> DecodeAll(dpcr::Ld06Decoder* decoder, const std::vector<std::uint8_t>& bytes,
-                                        std::size_t chunk);
-std::vector<dpcr::Xv11Packet> DecodeAll(dpcr::Xv11Decoder* decoder, const std::vector<std::uint8_t>& bytes,
-                                        std::size_t chunk);
+// Decodes everything, feeding in chunks of `chunk` bytes (Ld06Decoder or Xv11Decoder).
+template <typename Decoder>
+auto DecodeAll(Decoder* decoder, const std::vector<std::uint8_t>& bytes, std::size_t chunk) {
+  std::vector<std::decay_t<decltype(decoder->packet())>> out;
+  for (std::size_t at = 0; at < bytes.size(); at += chunk) {
+    const std::size_t n = bytes.size() - at < chunk ? bytes.size() - at : chunk;
+    std::size_t used = 0;
+    while (used < n) {
+      used += decoder->Feed(bytes.data() + at + used, n - used);
+      if (decoder->has_packet()) out.push_back(decoder->packet());
+    }
+  }
+  return out;
+}
 
 }  // namespace dpcr_test

@@ -83,10 +83,7 @@ void LoadSimulation(const MapperBenchOptions& o, Input<MapperType>* in) {
     in->stamps.push_back(stamp);
     if (o.scans > 0 && static_cast<int>(in->scans.size()) == o.scans) break;
   }
-  in->config.lidar.max_range_m = static_cast<float>(sim_config.lidar.max_range_m);
-  in->config.lidar.mount = dpcr::Pose2{static_cast<float>(sim_config.lidar.mount.x),
-                                       static_cast<float>(sim_config.lidar.mount.y),
-                                       static_cast<float>(sim_config.lidar.mount.theta)};
+  in->config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
 }
 
 template <class MapperType>
