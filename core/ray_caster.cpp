@@ -50,15 +50,21 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
     stats.dropped_pool_full += s.dropped_pool_full;
   };
   const float range2 = miss_range_m * miss_range_m;
+  const float margin2 = config.hit_margin_m * config.hit_margin_m;
   for (const Point2& p : hits) {
     const float dx = p.x - origin.x, dy = p.y - origin.y;
     const float d2 = dx * dx + dy * dy;
+    if (d2 <= margin2) continue;  // the whole ray is within the margin: nothing to clear
+    const float d = std::sqrt(d2);
+    // Clear up to hit_margin_m before the return (the end cell itself is not cleared).
+    const float end_k = 1.0f - config.hit_margin_m / d;
+    const Point2 end{origin.x + end_k * dx, origin.y + end_k * dy};
     if (miss_range_m <= 0.0f || d2 <= range2) {
-      miss(start, p);
+      miss(start, end);
     } else {
       // Start miss_range_m before the hit (a cell of the full ray's neighbourhood, not always on it).
-      const float k = 1.0f - miss_range_m / std::sqrt(d2);
-      miss(CellOf(origin.x + k * dx, origin.y + k * dy, res), p);
+      const float k = 1.0f - miss_range_m / d;
+      miss(CellOf(origin.x + k * dx, origin.y + k * dy, res), end);
     }
   }
   for (const Point2& p : free_ends) miss(start, p);

@@ -23,4 +23,11 @@ TEST_CASE("Validate rejects meaningless parameters") {
   bad = dpcr::MapperConfig{};
   bad.lidar.max_range_m = 0.0f;
   REQUIRE(dpcr::Validate(bad) == dpcr::Status::kInvalidArgument);
+  bad = dpcr::MapperConfig{};
+  bad.grid.hit_margin_m = -0.01f;
+  REQUIRE(dpcr::Validate(bad) == dpcr::Status::kInvalidArgument);
+  // A submap ray that starts inside the hit margin would have nothing to clear, or run backwards.
+  bad = dpcr::MapperConfig{};
+  bad.front_end.submap_miss_range_m = bad.grid.hit_margin_m;
+  REQUIRE(dpcr::Validate(bad) == dpcr::Status::kInvalidArgument);
 }

@@ -17,7 +17,10 @@ struct Fixture {
   std::unique_ptr<dpcr::TiledGridStorage<4, 4>> grid = std::make_unique<dpcr::TiledGridStorage<4, 4>>(pool.get());
   dpcr::GridConfig config;
   CellIndex scratch[64];
-  Fixture() { grid->Reset(CellIndex{-2, -2}); }
+  Fixture() {
+    grid->Reset(CellIndex{-2, -2});
+    config.hit_margin_m = 0.0f;  // the plain update rule; the margin has tests of its own below
+  }
   dpcr::InsertionStats Insert(Point2 origin, const std::vector<Point2>& hits, std::uint32_t stamp,
                               const std::vector<Point2>& free_ends = {}) {
     return dpcr::InsertRays(*grid, origin, dpcr::Span<const Point2>(hits.data(), hits.size()),
@@ -84,6 +87,7 @@ TEST_CASE("An exhausted tile pool is reported as dropped updates") {
   auto grid = std::make_unique<dpcr::TiledGridStorage<4, 4>>(pool.get());
   grid->Reset(CellIndex{-2, -2});
   dpcr::GridConfig config;
+  config.hit_margin_m = 0.0f;
   CellIndex scratch[4];
   const std::vector<Point2> hits{Point2{2.5f, 0.025f}};  // two tiles away from the origin's tile
   const auto stats = dpcr::InsertRays(*grid, Point2{0.025f, 0.025f}, dpcr::Span<const Point2>(hits.data(), 1),
@@ -94,4 +98,19 @@ TEST_CASE("An exhausted tile pool is reported as dropped updates") {
   REQUIRE(stats.miss_cells == 18);
   REQUIRE(pool->used() == 1);
   REQUIRE(pool->failed_allocations() > 0);
+}
+
+TEST_CASE("A ray clears nothing within the hit margin before its return") {
+  Fixture f;
+  f.config.hit_margin_m = 0.05f;
+  const auto stats = f.Insert(Point2{0.025f, 0.025f}, {Point2{1.025f, 0.025f}}, 1);
+  REQUIRE(stats.hit_cells == 1);
+  REQUIRE(stats.miss_cells == 19);
+  for (int x = 0; x < 19; ++x) REQUIRE(f.grid->Get(CellIndex{x, 0}) == f.config.miss_delta);
+  REQUIRE(f.grid->Get(CellIndex{19, 0}) == dpcr::kUnknownCell);  // inside the margin
+  REQUIRE(f.grid->Get(CellIndex{20, 0}) == f.config.hit_delta);
+  // A return closer than the margin marks its cell and clears nothing.
+  const auto near = f.Insert(Point2{0.025f, 0.025f}, {Point2{0.025f, 0.06f}}, 2);
+  REQUIRE(near.hit_cells == 1);
+  REQUIRE(near.miss_cells == 0);
 }

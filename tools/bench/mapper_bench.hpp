@@ -24,6 +24,7 @@ struct MapperBenchOptions {
   int k1 = -1, k2 = -1, ks = -1, n = -1;
   int submap_threshold = -1, region_threshold = -1;  // ReferenceConfig::obstacle_threshold (Q10)
   int settle = -1;                                    // GridConfig::settle_at_clamp (0/1)
+  float hit_margin_m = -1.0f;                         // GridConfig::hit_margin_m
   std::string trajectory_path;  // TUM output of the run (empty: none)
 };
 
