@@ -14,6 +14,7 @@
 #include "host_sim/carmen/carmen_reader.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
+#include "tools/eval/accuracy.hpp"
 
 namespace dpcr_bench {
 namespace {
@@ -26,6 +27,7 @@ struct Input {
   std::vector<std::size_t> odometry_end;
   std::vector<typename MapperType::ScanType> scans;
   std::vector<std::string> stamps;  // TUM stamps
+  dpcr::eval::Trajectory truth;      // simulated runs: the true pose at each scan
 };
 
 // Same feeding as dpcr-replay --carmen (odometry "laser", decimation beyond kMaxBeams).
@@ -78,6 +80,7 @@ void LoadSimulation(const MapperBenchOptions& o, Input<MapperType>* in) {
     }
     in->odometry_end.push_back(in->odometry.size());
     in->scans.push_back(event.scan);
+    in->truth.push_back({event.scan.stamp_us, event.truth.ToPose2()});
     char stamp[32];
     std::snprintf(stamp, sizeof(stamp), "%.6f", static_cast<double>(event.scan.stamp_us) * 1e-6);
     in->stamps.push_back(stamp);
@@ -140,6 +143,12 @@ int Run(const MapperBenchOptions& o, Input<MapperType>& input) {
   std::printf("first registrations %u (rejected %u), second %u (rejected %u), submap line builds %u, region line builds %u, regions %d\n",
               c.first_registrations, c.first_rejected, c.second_registrations, c.second_rejected, c.submap_line_builds,
               c.region_line_builds, mapper.region_count());
+  if (!input.truth.empty()) {
+    dpcr::eval::Trajectory estimate;
+    for (std::size_t i = 0; i < poses.size(); ++i) estimate.push_back({input.scans[i].stamp_us, poses[i]});
+    const dpcr::eval::AccuracyResult a = dpcr::eval::EvaluateAgainstGroundTruth(estimate, input.truth);
+    std::printf("LocErr_ave %.3f m  ATE %.3f m  max %.3f m\n", a.loc_err_ave_m, a.ate_rmse_m, a.max_err_m);
+  }
   return 0;
 }
 
