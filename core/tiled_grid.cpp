@@ -99,6 +99,57 @@ bool TiledGrid::Reserve(CellIndex c, std::uint32_t stamp) {
   return tile != nullptr && MarkOnce(tile, offset, stamp);
 }
 
+namespace {
+
+// ApplyDelta with the settle rule fixed at compile time (the hot loop below).
+template <bool kSettle>
+void ApplyDeltaTo(std::int16_t* cell, std::int32_t delta, std::int32_t lo, std::int32_t hi) {
+  const std::int32_t old = *cell;
+  if (kSettle && (old == lo || old == hi)) return;
+  std::int32_t v = (old == kUnknownCell ? 0 : old) + delta;
+  v = v < lo ? lo : v;
+  v = v > hi ? hi : v;
+  *cell = static_cast<std::int16_t>(v);
+}
+
+// Walks the segment's cells inside one tile from tile-local (lx, ly), at most `left` of them,
+// updating each (once per scan when kStamped); returns how many it walked. The walk's state
+// lives in locals so that the loop keeps it in registers. tile == nullptr (pool full): walk only.
+template <bool kStamped, bool kSettle>
+std::int32_t WalkRun(Tile* tile, BresenhamWalk* walk, std::int32_t* lx_io, std::int32_t* ly_io, std::int32_t left,
+                     std::int32_t delta, std::int32_t lo, std::int32_t hi) {
+  const std::int32_t dx = walk->dx, minus_dy = -walk->dy, sx = walk->sx, sy = walk->sy;
+  std::int32_t err = walk->err, lx = *lx_io, ly = *ly_io, n = left;
+  do {
+    if (tile != nullptr) {
+      if (kStamped) {
+        const std::uint32_t bit = 1u << lx, word = tile->updated[ly];
+        if ((word & bit) == 0) {
+          tile->updated[ly] = word | bit;
+          ApplyDeltaTo<kSettle>(&tile->cells[(ly << 5) | lx], delta, lo, hi);
+        }
+      } else {
+        ApplyDeltaTo<kSettle>(&tile->cells[(ly << 5) | lx], delta, lo, hi);
+      }
+    }
+    const std::int32_t e2 = 2 * err;  // BresenhamWalk::Step
+    if (e2 > minus_dy) {
+      err += minus_dy;
+      lx += sx;
+    }
+    if (e2 < dx) {
+      err += dx;
+      ly += sy;
+    }
+  } while (--n > 0 && static_cast<std::uint32_t>(lx) < 32u && static_cast<std::uint32_t>(ly) < 32u);
+  walk->err = err;
+  *lx_io = lx;
+  *ly_io = ly;
+  return left - n;
+}
+
+}  // namespace
+
 TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::int16_t delta, std::int16_t lo,
                                                   std::int16_t hi, std::uint32_t stamp) {
   // TraceCells' Bresenham walk (same cells, same order), cut into runs of cells in one tile: the
@@ -125,21 +176,15 @@ TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::
     }
     const std::int32_t base_x = c.x - (c.x & 31), base_y = c.y - (c.y & 31);
     std::int32_t lx = c.x & 31, ly = c.y & 31;
-    int run = 0;
-    do {
-      if (tile != nullptr) {
-        const std::uint32_t bit = 1u << lx;
-        std::uint32_t& word = tile->updated[ly];
-        if (stamp == 0) {
-          ApplyDelta(&tile->cells[(ly << 5) | lx], delta, lo, hi, settle_at_bounds_);
-        } else if ((word & bit) == 0) {
-          word |= bit;
-          ApplyDelta(&tile->cells[(ly << 5) | lx], delta, lo, hi, settle_at_bounds_);
-        }
-      }
-      ++run;
-      walk.Step(&lx, &ly);
-    } while (--left > 0 && static_cast<std::uint32_t>(lx) < 32u && static_cast<std::uint32_t>(ly) < 32u);
+    std::int32_t run = 0;
+    if (stamp != 0) {
+      run = settle_at_bounds_ ? WalkRun<true, true>(tile, &walk, &lx, &ly, left, delta, lo, hi)
+                              : WalkRun<true, false>(tile, &walk, &lx, &ly, left, delta, lo, hi);
+    } else {
+      run = settle_at_bounds_ ? WalkRun<false, true>(tile, &walk, &lx, &ly, left, delta, lo, hi)
+                              : WalkRun<false, false>(tile, &walk, &lx, &ly, left, delta, lo, hi);
+    }
+    left -= run;
     if (tile != nullptr) {
       st.applied += run;
     } else {
