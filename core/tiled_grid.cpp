@@ -112,40 +112,59 @@ void ApplyDeltaTo(std::int16_t* cell, std::int32_t delta, std::int32_t lo, std::
   *cell = static_cast<std::int16_t>(v);
 }
 
-// Walks the segment's cells inside one tile from tile-local (lx, ly), at most `left` of them,
-// updating each (once per scan when kStamped); returns how many it walked. The walk's state
-// lives in locals so that the loop keeps it in registers. tile == nullptr (pool full): walk only.
+// Updates one cell (once per scan when kStamped: bit lx of updated[ly] marks it).
 template <bool kStamped, bool kSettle>
+void UpdateCell(Tile* tile, std::int32_t lx, std::int32_t ly, std::int32_t delta, std::int32_t lo, std::int32_t hi) {
+  if (kStamped) {
+    const std::uint32_t bit = 1u << lx, word = tile->updated[ly];
+    if ((word & bit) != 0) return;
+    tile->updated[ly] = word | bit;
+  }
+  ApplyDeltaTo<kSettle>(&tile->cells[(ly << 5) | lx], delta, lo, hi);
+}
+
+// Walks the segment's cells inside one tile from tile-local (lx, ly), at most `left` of them,
+// updating each; returns how many it walked. Every step moves along the major axis (kXMajor: x),
+// so the run ends after a known number of steps unless the minor axis leaves the tile first,
+// which is checked only when it moves. The walk's state lives in locals
+// so that the loop keeps it in registers. tile == nullptr (pool full): walk only.
+template <bool kXMajor, bool kStamped, bool kSettle>
 std::int32_t WalkRun(Tile* tile, BresenhamWalk* walk, std::int32_t* lx_io, std::int32_t* ly_io, std::int32_t left,
                      std::int32_t delta, std::int32_t lo, std::int32_t hi) {
-  const std::int32_t dx = walk->dx, minus_dy = -walk->dy, sx = walk->sx, sy = walk->sy;
-  std::int32_t err = walk->err, lx = *lx_io, ly = *ly_io, n = left;
-  do {
+  // BresenhamWalk::Step with e2 = 2 err: x moves when e2 > -dy (err -= dy), y when e2 < dx
+  // (err += dx); along the major axis the test always passes.
+  const std::int32_t dx = walk->dx, dy = walk->dy;
+  const std::int32_t major_s = kXMajor ? walk->sx : walk->sy, minor_s = kXMajor ? walk->sy : walk->sx;
+  std::int32_t err = walk->err;
+  std::int32_t major = kXMajor ? *lx_io : *ly_io, minor = kXMajor ? *ly_io : *lx_io;
+  const std::int32_t to_edge = major_s > 0 ? 32 - major : major + 1;
+  const std::int32_t n = left < to_edge ? left : to_edge;
+  std::int32_t i = 0;
+  while (i < n) {
     if (tile != nullptr) {
-      if (kStamped) {
-        const std::uint32_t bit = 1u << lx, word = tile->updated[ly];
-        if ((word & bit) == 0) {
-          tile->updated[ly] = word | bit;
-          ApplyDeltaTo<kSettle>(&tile->cells[(ly << 5) | lx], delta, lo, hi);
-        }
-      } else {
-        ApplyDeltaTo<kSettle>(&tile->cells[(ly << 5) | lx], delta, lo, hi);
-      }
+      UpdateCell<kStamped, kSettle>(tile, kXMajor ? major : minor, kXMajor ? minor : major, delta, lo, hi);
     }
-    const std::int32_t e2 = 2 * err;  // BresenhamWalk::Step
-    if (e2 > minus_dy) {
-      err += minus_dy;
-      lx += sx;
+    ++i;
+    const std::int32_t e2 = 2 * err;
+    err += kXMajor ? -dy : dx;
+    major += major_s;
+    if (kXMajor ? e2 < dx : e2 > -dy) {
+      err += kXMajor ? dx : -dy;
+      minor += minor_s;
+      if (static_cast<std::uint32_t>(minor) >= 32u) break;
     }
-    if (e2 < dx) {
-      err += dx;
-      ly += sy;
-    }
-  } while (--n > 0 && static_cast<std::uint32_t>(lx) < 32u && static_cast<std::uint32_t>(ly) < 32u);
+  }
   walk->err = err;
-  *lx_io = lx;
-  *ly_io = ly;
-  return left - n;
+  *lx_io = kXMajor ? major : minor;
+  *ly_io = kXMajor ? minor : major;
+  return i;
+}
+
+template <bool kStamped, bool kSettle>
+std::int32_t WalkRun(Tile* tile, BresenhamWalk* walk, std::int32_t* lx, std::int32_t* ly, std::int32_t left,
+                     std::int32_t delta, std::int32_t lo, std::int32_t hi) {
+  return walk->dx >= walk->dy ? WalkRun<true, kStamped, kSettle>(tile, walk, lx, ly, left, delta, lo, hi)
+                              : WalkRun<false, kStamped, kSettle>(tile, walk, lx, ly, left, delta, lo, hi);
 }
 
 }  // namespace
