@@ -20,7 +20,7 @@ RegistrationReference::RegistrationReference(Span<ObstacleCell> cells, Span<std:
       max_h_(max_h) {
   DPCR_ASSERT(nearest.size() == static_cast<std::size_t>(max_w * max_h) && scratch.size() >= cells.size());
   DPCR_ASSERT(refit.empty() || refit.size() >= lines.size());
-  DPCR_ASSERT(cells.size() < kNotSearched);
+  DPCR_ASSERT(cells.size() < kNoneNear);
   const int blocks_x = (max_w + 7) >> kBlockShift, blocks_y = (max_h + 7) >> kBlockShift;
   DPCR_ASSERT(obstacle_blocks.size() == static_cast<std::size_t>(blocks_x * blocks_y));
 }
@@ -61,6 +61,12 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
       for (int ly = 0; ly < kTileSide; ++ly) {
         const int y = y0 + ly;
         if (y < 0 || y >= h_) continue;
+        // Most rows hold no obstacle cell: a branch-free (vectorised) pass says so. kUnknownCell is
+        // below any threshold.
+        const std::int16_t* row = values + ly * kTileSide;
+        bool any = false;
+        for (int lx = 0; lx < kTileSide; ++lx) any |= row[lx] > config.obstacle_threshold;
+        if (!any) continue;
         for (int lx = 0; lx < kTileSide; ++lx) {
           const int x = x0 + lx;
           const std::int16_t v = values[ly * kTileSide + lx];
@@ -103,10 +109,8 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
     l.cyy *= res_ * res_;
   }
 
-  // 3. The nearest-obstacle table: every other cell is searched on its first query (Search).
-  for (std::size_t i = 0; i < n_table; ++i) {
-    if (nearest_[i] == kNoCell) nearest_[i] = kNotSearched;
-  }
+  // 3. The nearest-obstacle table: every other cell (kNoCell = kNotSearched) is searched on its
+  // first query (Search).
   const float bound_cells = config.max_distance_m * inv_res_;
   bound2_ = static_cast<std::int32_t>(bound_cells * bound_cells);
   reach_ = 0;
@@ -168,7 +172,7 @@ std::uint16_t RegistrationReference::Search(int x, int y) const {
       }
     }
   }
-  nearest_[static_cast<std::size_t>(y * w_ + x)] = best;
+  nearest_[static_cast<std::size_t>(y * w_ + x)] = best == kNoCell ? kNoneNear : best;
   return best;
 }
 

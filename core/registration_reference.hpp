@@ -68,7 +68,8 @@ class RegistrationReference {
     if (!(fx >= 0.0f && fy >= 0.0f && fx < static_cast<float>(w_) && fy < static_cast<float>(h_))) return kNoCell;
     const int x = static_cast<int>(fx), y = static_cast<int>(fy);
     const std::uint16_t k = nearest_[static_cast<std::size_t>(y * w_ + x)];
-    return k != kNotSearched ? k : Search(x, y);
+    if (k < kNoneNear) return k;
+    return k == kNotSearched ? Search(x, y) : kNoCell;
   }
   // The obstacle cell occupying window-local (x, y), or kNoCell.
   std::uint16_t ObstacleAt(int x, int y) const;
@@ -85,8 +86,10 @@ class RegistrationReference {
   float resolution_m() const { return res_; }
 
  private:
-  // A table entry not searched yet (obstacle cells hold their own index from the build on).
-  static constexpr std::uint16_t kNotSearched = 0xFFFE;
+  // Table entries besides cell indices: not searched yet (every entry but the obstacle cells'
+  // after a build, which hold their own index), and searched with no obstacle cell in the bound.
+  static constexpr std::uint16_t kNotSearched = kNoCell;
+  static constexpr std::uint16_t kNoneNear = 0xFFFE;
   // Obstacle cells are also marked in 8 x 8-cell blocks, one bit per cell (bit 8 * ly + lx).
   static constexpr int kBlockShift = 3;
 
