@@ -110,7 +110,8 @@ void FrontEnd::RefitSubmapLines() {
   ref.BeginPointRefit();
   for (int i = 0; i < s_.submap->size(); ++i) {
     const SubmapScanView scan = s_.submap->scan(i);
-    for (const Point2& p : scan.points) ref.AddRefitPoint(scan.pose.Apply(p), config_.front_end.submap_refit_gate_m);
+    const PointTransform to_submap(scan.pose);
+    for (const Point2& p : scan.points) ref.AddRefitPoint(to_submap(p), config_.front_end.submap_refit_gate_m);
   }
   (void)ref.EndPointRefit(config_.front_end.submap_refit_min_points);
 }
@@ -173,7 +174,8 @@ void FrontEnd::SeedRegionFromSubmap(RegionalMap& r) {
   for (int i = 0; i + 1 < s_.submap->size(); ++i) {
     const SubmapScanView scan = s_.submap->scan(i);
     const Pose2 p = to_region * scan.pose;
-    for (std::size_t k = 0; k < scan.points.size(); ++k) s_.free_ends[k] = p.Apply(scan.points[k]);
+    const PointTransform to_region_frame(p);
+    for (std::size_t k = 0; k < scan.points.size(); ++k) s_.free_ends[k] = to_region_frame(scan.points[k]);
     if (++stamp_ == 0) stamp_ = 1;
     const InsertionStats st = InsertRays(*r.grid, Point2{p.x, p.y}, Span<const Point2>(s_.free_ends.data(), scan.points.size()),
                                          Span<const Point2>(), config_.grid, stamp_, s_.scratch);
@@ -257,8 +259,9 @@ void FrontEnd::InsertIntoRegion(const ProjectedScan& projected) {
   const Pose2 to_region = r.anchor.Inverse() * pose();
   // hits/free_ends are robot-frame; move them into the region's frame in place (the submap
   // already copied the robot-frame points).
-  for (std::size_t i = 0; i < projected.hits; ++i) s_.hits[i] = to_region.Apply(s_.hits[i]);
-  for (std::size_t i = 0; i < projected.free_ends; ++i) s_.free_ends[i] = to_region.Apply(s_.free_ends[i]);
+  const PointTransform into_region(to_region);
+  for (std::size_t i = 0; i < projected.hits; ++i) s_.hits[i] = into_region(s_.hits[i]);
+  for (std::size_t i = 0; i < projected.free_ends; ++i) s_.free_ends[i] = into_region(s_.free_ends[i]);
   const InsertionStats st = InsertRays(*r.grid, Point2{to_region.x, to_region.y}, Span<const Point2>(s_.hits.data(), projected.hits),
                                        Span<const Point2>(s_.free_ends.data(), projected.free_ends), config_.grid, stamp_, s_.scratch);
   ++r.scans_inserted;
