@@ -23,6 +23,7 @@ RegistrationReference::RegistrationReference(Span<ObstacleCell> cells, Span<std:
   DPCR_ASSERT(cells.size() < kNoneNear);
   const int blocks_x = (max_w + 7) >> kBlockShift, blocks_y = (max_h + 7) >> kBlockShift;
   DPCR_ASSERT(obstacle_blocks.size() == static_cast<std::size_t>(blocks_x * blocks_y));
+  DPCR_ASSERT(blocks_x <= 64 && blocks_y <= kMaxBlockRows);
 }
 
 std::uint16_t RegistrationReference::ObstacleAt(int x, int y) const {
@@ -48,6 +49,7 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
   blocks_x_ = (w_ + 7) >> kBlockShift;
   const std::size_t n_blocks = static_cast<std::size_t>(blocks_x_ * ((h_ + 7) >> kBlockShift));
   for (std::size_t i = 0; i < n_blocks; ++i) obstacle_blocks_[i] = 0;
+  for (std::uint64_t& row : occupied_blocks_) row = 0;
 
   // 1. Obstacle cells, tile by tile: only allocated tiles cost anything.
   const CellBox box = grid.box();
@@ -84,6 +86,7 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
           nearest_[static_cast<std::size_t>(y * w_ + x)] = static_cast<std::uint16_t>(cell_count_++);
           obstacle_blocks_[static_cast<std::size_t>((y >> kBlockShift) * blocks_x_ + (x >> kBlockShift))] |=
               std::uint64_t{1} << (((y & 7) << 3) | (x & 7));
+          occupied_blocks_[y >> kBlockShift] |= std::uint64_t{1} << (x >> kBlockShift);
         }
       }
     }
@@ -120,24 +123,23 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
 }
 
 std::uint16_t RegistrationReference::Search(int x, int y) const {
-  // Blocks in rings around the query's block, nearest first; a block is opened only if it holds
-  // obstacle cells and could hold one no farther than the best so far. Among equally near cells
-  // the one with more evidence wins (the wall's core over a cell that range noise reached), then
-  // the smaller index: the answer does not depend on the visiting order.
+  // Rows of blocks from the query's outwards; in each, only the blocks holding obstacle cells that
+  // could hold one no farther than the best so far. Among equally near cells the one with more
+  // evidence wins (the wall's core over a cell that range noise reached), then the smaller index:
+  // the answer does not depend on the visiting order.
   std::int32_t best_d2 = bound2_;
   std::uint16_t best = kNoCell;
-  const int bx = x >> kBlockShift, by = y >> kBlockShift;
+  const int by = y >> kBlockShift;
   const int bx0 = (x - reach_ < 0 ? 0 : x - reach_) >> kBlockShift;
   const int by0 = (y - reach_ < 0 ? 0 : y - reach_) >> kBlockShift;
   const int bx1 = (x + reach_ >= w_ ? w_ - 1 : x + reach_) >> kBlockShift;
   const int by1 = (y + reach_ >= h_ ? h_ - 1 : y + reach_) >> kBlockShift;
-  const auto open_block = [&](int ix, int iy) {
-    std::uint64_t bits = obstacle_blocks_[static_cast<std::size_t>(iy * blocks_x_ + ix)];
-    if (bits == 0) return;
+  const std::uint64_t columns = (~std::uint64_t{0} >> (63 - bx1)) & (~std::uint64_t{0} << bx0);
+  const auto open_block = [&](int ix, int iy, std::int32_t gy2) {
     const int x0 = ix << kBlockShift, y0 = iy << kBlockShift;
     const int gx = x < x0 ? x0 - x : (x > x0 + 7 ? x - x0 - 7 : 0);
-    const int gy = y < y0 ? y0 - y : (y > y0 + 7 ? y - y0 - 7 : 0);
-    if (gx * gx + gy * gy > best_d2) return;
+    if (gx * gx + gy2 > best_d2) return;
+    std::uint64_t bits = obstacle_blocks_[static_cast<std::size_t>(iy * blocks_x_ + ix)];
     while (bits != 0) {
       const int b = __builtin_ctzll(bits);
       bits &= bits - 1;
@@ -153,22 +155,19 @@ std::uint16_t RegistrationReference::Search(int x, int y) const {
       }
     }
   };
-  int rings = bx - bx0;
-  rings = bx1 - bx > rings ? bx1 - bx : rings;
-  rings = by - by0 > rings ? by - by0 : rings;
-  rings = by1 - by > rings ? by1 - by : rings;
-  for (int ring = 0; ring <= rings; ++ring) {
-    if (ring > 0) {
-      // Every cell of ring r is at least 8 (r - 1) + 1 cells away along some axis.
-      const std::int32_t gap = ((ring - 1) << kBlockShift) + 1;
-      if (gap * gap > best_d2) break;
-    }
-    for (int iy = by - ring; iy <= by + ring; ++iy) {
+  // Rows by, by - 1, by + 1, by - 2, ...: each farther row is at least as far from the query.
+  const int rows = (by - by0 > by1 - by ? by - by0 : by1 - by);
+  for (int r = 0; r <= rows; ++r) {
+    const std::int32_t gap = r == 0 ? 0 : ((r - 1) << kBlockShift) + 1;  // a lower bound on |dy|
+    if (gap * gap > best_d2) break;
+    for (int side = 0; side < (r == 0 ? 1 : 2); ++side) {
+      const int iy = side == 0 ? by - r : by + r;
       if (iy < by0 || iy > by1) continue;
-      const bool edge_row = iy == by - ring || iy == by + ring;
-      const int step = edge_row || ring == 0 ? 1 : 2 * ring;
-      for (int ix = bx - ring; ix <= bx + ring; ix += step) {
-        if (ix >= bx0 && ix <= bx1) open_block(ix, iy);
+      const int y0 = iy << kBlockShift;
+      const int gy = y < y0 ? y0 - y : (y > y0 + 7 ? y - y0 - 7 : 0);
+      const std::int32_t gy2 = gy * gy;
+      for (std::uint64_t blocks = occupied_blocks_[iy] & columns; blocks != 0; blocks &= blocks - 1) {
+        open_block(__builtin_ctzll(blocks), iy, gy2);
       }
     }
   }

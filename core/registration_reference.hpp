@@ -90,8 +90,10 @@ class RegistrationReference {
   // after a build, which hold their own index), and searched with no obstacle cell in the bound.
   static constexpr std::uint16_t kNotSearched = kNoCell;
   static constexpr std::uint16_t kNoneNear = 0xFFFE;
-  // Obstacle cells are also marked in 8 x 8-cell blocks, one bit per cell (bit 8 * ly + lx).
+  // Obstacle cells are also marked in 8 x 8-cell blocks, one bit per cell (bit 8 * ly + lx), and
+  // the blocks holding any in one bit per block of a row of blocks (windows up to 512 cells).
   static constexpr int kBlockShift = 3;
+  static constexpr int kMaxBlockRows = 64;
 
   // The nearest obstacle cell to window cell (x, y) within the bound; caches it in the table.
   std::uint16_t Search(int x, int y) const;
@@ -100,6 +102,7 @@ class RegistrationReference {
   // A cache that Search fills, also through a const reference (queries are single-threaded).
   Span<std::uint16_t> nearest_;
   Span<std::uint64_t> obstacle_blocks_;
+  std::uint64_t occupied_blocks_[kMaxBlockRows];  // bit bx of row by: block (bx, by) has an obstacle cell
   Span<std::uint16_t> scratch_;
   Span<LineFeature> lines_;
   Span<RefitSums> refit_;
