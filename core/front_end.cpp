@@ -120,7 +120,8 @@ void FrontEnd::RegisterScan(std::size_t hits, const Pose2& predicted) {
   const FrontEndConfig& f = config_.front_end;
   const PosePrior prior{predicted, f.prior_info_xy, f.prior_info_theta};
   const RegistrationResult r =
-      RegisterImproved(*s_.submap_reference, Span<const Point2>(s_.hits.data(), hits), predicted, &prior, f.first_registration);
+      RegisterImproved(*s_.submap_reference, Span<const Point2>(s_.hits.data(), hits), predicted, &prior,
+                       f.first_registration, s_.correspondences);
   ++fe_counters_.first_registrations;
   if (r.verdict == Status::kOk) {
     pose_ = r.pose;
@@ -244,7 +245,8 @@ void FrontEnd::RegisterSubmap(RegionalMap& r) {
   const Pose2 initial = r.anchor.Inverse() * submap_pose_;
   const PosePrior prior{initial, f.prior_info_xy, f.prior_info_theta};
   const RegistrationResult res =
-      RegisterImproved(*s_.region_reference, Span<const Point2>(s_.target.data(), count), initial, &prior, f.second_registration);
+      RegisterImproved(*s_.region_reference, Span<const Point2>(s_.target.data(), count), initial, &prior,
+                       f.second_registration, s_.correspondences);
   ++fe_counters_.second_registrations;
   if (res.verdict == Status::kOk) {
     submap_pose_ = r.anchor * res.pose;  // the submap, and the robot in it, move together
