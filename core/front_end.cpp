@@ -265,7 +265,8 @@ void FrontEnd::InsertIntoRegion(const ProjectedScan& projected) {
   for (std::size_t i = 0; i < projected.hits; ++i) s_.hits[i] = into_region(s_.hits[i]);
   for (std::size_t i = 0; i < projected.free_ends; ++i) s_.free_ends[i] = into_region(s_.free_ends[i]);
   const InsertionStats st = InsertRays(*r.grid, Point2{to_region.x, to_region.y}, Span<const Point2>(s_.hits.data(), projected.hits),
-                                       Span<const Point2>(s_.free_ends.data(), projected.free_ends), config_.grid, stamp_, s_.scratch);
+                                       Span<const Point2>(s_.free_ends.data(), projected.free_ends), config_.grid, stamp_, s_.scratch,
+                                       config_.front_end.region_miss_range_m);
   ++r.scans_inserted;
   counters_.updates_out_of_box += static_cast<std::uint32_t>(st.out_of_box);
   counters_.updates_dropped_pool_full += static_cast<std::uint32_t>(st.dropped_pool_full);
