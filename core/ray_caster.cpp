@@ -29,8 +29,10 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
 
   // 1. Reserve every distinct hit cell, so no ray of this scan can clear it.
   std::size_t reserved = 0;
-  for (const Point2& p : hits) {
-    const CellIndex c = CellOf(p.x, p.y, res);
+  CellIndex next_hit = hits.empty() ? start : CellOf(hits[0].x, hits[0].y, res);
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    const CellIndex c = next_hit;
+    if (i + 1 < hits.size()) next_hit = CellOf(hits[i + 1].x, hits[i + 1].y, res);  // ahead, as below
     if (grid.Reserve(c, stamp)) {
       scratch[reserved++] = c;
     } else if (!grid.box().Contains(c)) {
@@ -42,26 +44,32 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
   }
   // 2. Misses along every ray, each cell once. The box is convex and rays start inside it:
   // a ray that leaves it never comes back, so tracing stops there (one out_of_box per ray).
-  const auto miss = [&](CellIndex from, const Point2& p) {
+  const auto miss = [&](CellIndex from, CellIndex to) {
     const TiledGrid::SegmentStats s =
-        grid.UpdateSegment(from, CellOf(p.x, p.y, res), config.miss_delta, config.clamp_min, config.clamp_max, stamp);
+        grid.UpdateSegment(from, to, config.miss_delta, config.clamp_min, config.clamp_max, stamp);
     stats.miss_cells += s.applied;
     stats.out_of_box += s.out_of_box;
     stats.dropped_pool_full += s.dropped_pool_full;
   };
   const float range2 = miss_range_m * miss_range_m;
-  for (const Point2& p : hits) {
+  const auto from_cell = [&](const Point2& p) {
     const float dx = p.x - origin.x, dy = p.y - origin.y;
     const float d2 = dx * dx + dy * dy;
-    if (miss_range_m <= 0.0f || d2 <= range2) {
-      miss(start, p);
-    } else {
-      // Start miss_range_m before the hit (a cell of the full ray's neighbourhood, not always on it).
-      const float k = 1.0f - miss_range_m / std::sqrt(d2);
-      miss(CellOf(origin.x + k * dx, origin.y + k * dy, res), p);
-    }
+    if (miss_range_m <= 0.0f || d2 <= range2) return start;
+    // Start miss_range_m before the hit (a cell of the full ray's neighbourhood, not always on it).
+    const float k = 1.0f - miss_range_m / std::sqrt(d2);
+    return CellOf(origin.x + k * dx, origin.y + k * dy, res);
+  };
+  // The next ray's cells (a chain of square root and divisions) are computed before this ray is
+  // walked, so that they run in the walk's shadow instead of after it.
+  CellIndex next_from = start, next_to = start;
+  if (!hits.empty()) next_from = from_cell(hits[0]), next_to = CellOf(hits[0].x, hits[0].y, res);
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    const CellIndex from = next_from, to = next_to;
+    if (i + 1 < hits.size()) next_from = from_cell(hits[i + 1]), next_to = CellOf(hits[i + 1].x, hits[i + 1].y, res);
+    miss(from, to);
   }
-  for (const Point2& p : free_ends) miss(start, p);
+  for (const Point2& p : free_ends) miss(start, CellOf(p.x, p.y, res));
   // 3. The reserved hits (stamp 0: already marked for this scan).
   for (std::size_t i = 0; i < reserved; ++i) {
     Count(grid.Update(scratch[i], config.hit_delta, config.clamp_min, config.clamp_max, 0), &stats,
