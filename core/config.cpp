@@ -11,7 +11,9 @@ Status Validate(const MapperConfig& c) {
                         c.lidar.no_return_free_m >= 0.0f;
   const FrontEndConfig& f = c.front_end;
   const bool front_ok = f.submap_scans > 0 && f.submap_line_period > 0 && f.region_line_period > 0 &&
-                        f.second_registration_period > 0 && (f.submap_miss_range_m == 0.0f || f.submap_miss_range_m > c.grid.hit_margin_m) && f.region_width_m > 0.5f &&
+                        f.second_registration_period > 0 && f.region_width_m > 0.5f &&
+                        (f.submap_miss_range_m == 0.0f || f.submap_miss_range_m > c.grid.hit_margin_m) &&
+                        (f.region_miss_range_m == 0.0f || f.region_miss_range_m > c.grid.hit_margin_m) &&
                         f.region_hysteresis_m >= 0.0f && f.region_hysteresis_m < f.region_width_m / 2 &&
                         f.region_mature_scans > 0 && f.submap_refit_gate_m >= 0.0f && f.submap_refit_min_points > 0 && f.reference_inner_margin_m >= 0.0f;
   return grid_ok && lidar_ok && front_ok ? Status::kOk : Status::kInvalidArgument;

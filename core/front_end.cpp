@@ -110,7 +110,8 @@ void FrontEnd::RefitSubmapLines() {
   ref.BeginPointRefit();
   for (int i = 0; i < s_.submap->size(); ++i) {
     const SubmapScanView scan = s_.submap->scan(i);
-    for (const Point2& p : scan.points) ref.AddRefitPoint(scan.pose.Apply(p), config_.front_end.submap_refit_gate_m);
+    const PointTransform to_submap(scan.pose);
+    for (const Point2& p : scan.points) ref.AddRefitPoint(to_submap(p), config_.front_end.submap_refit_gate_m);
   }
   (void)ref.EndPointRefit(config_.front_end.submap_refit_min_points);
 }
@@ -119,7 +120,8 @@ void FrontEnd::RegisterScan(std::size_t hits, const Pose2& predicted) {
   const FrontEndConfig& f = config_.front_end;
   const PosePrior prior{predicted, f.prior_info_xy, f.prior_info_theta};
   const RegistrationResult r =
-      RegisterImproved(*s_.submap_reference, Span<const Point2>(s_.hits.data(), hits), predicted, &prior, f.first_registration);
+      RegisterImproved(*s_.submap_reference, Span<const Point2>(s_.hits.data(), hits), predicted, &prior,
+                       f.first_registration, s_.correspondences);
   ++fe_counters_.first_registrations;
   if (r.verdict == Status::kOk) {
     pose_ = r.pose;
@@ -173,7 +175,8 @@ void FrontEnd::SeedRegionFromSubmap(RegionalMap& r) {
   for (int i = 0; i + 1 < s_.submap->size(); ++i) {
     const SubmapScanView scan = s_.submap->scan(i);
     const Pose2 p = to_region * scan.pose;
-    for (std::size_t k = 0; k < scan.points.size(); ++k) s_.free_ends[k] = p.Apply(scan.points[k]);
+    const PointTransform to_region_frame(p);
+    for (std::size_t k = 0; k < scan.points.size(); ++k) s_.free_ends[k] = to_region_frame(scan.points[k]);
     if (++stamp_ == 0) stamp_ = 1;
     const InsertionStats st = InsertRays(*r.grid, Point2{p.x, p.y}, Span<const Point2>(s_.free_ends.data(), scan.points.size()),
                                          Span<const Point2>(), config_.grid, stamp_, s_.scratch);
@@ -242,7 +245,8 @@ void FrontEnd::RegisterSubmap(RegionalMap& r) {
   const Pose2 initial = r.anchor.Inverse() * submap_pose_;
   const PosePrior prior{initial, f.prior_info_xy, f.prior_info_theta};
   const RegistrationResult res =
-      RegisterImproved(*s_.region_reference, Span<const Point2>(s_.target.data(), count), initial, &prior, f.second_registration);
+      RegisterImproved(*s_.region_reference, Span<const Point2>(s_.target.data(), count), initial, &prior,
+                       f.second_registration, s_.correspondences);
   ++fe_counters_.second_registrations;
   if (res.verdict == Status::kOk) {
     submap_pose_ = r.anchor * res.pose;  // the submap, and the robot in it, move together
@@ -257,10 +261,12 @@ void FrontEnd::InsertIntoRegion(const ProjectedScan& projected) {
   const Pose2 to_region = r.anchor.Inverse() * pose();
   // hits/free_ends are robot-frame; move them into the region's frame in place (the submap
   // already copied the robot-frame points).
-  for (std::size_t i = 0; i < projected.hits; ++i) s_.hits[i] = to_region.Apply(s_.hits[i]);
-  for (std::size_t i = 0; i < projected.free_ends; ++i) s_.free_ends[i] = to_region.Apply(s_.free_ends[i]);
+  const PointTransform into_region(to_region);
+  for (std::size_t i = 0; i < projected.hits; ++i) s_.hits[i] = into_region(s_.hits[i]);
+  for (std::size_t i = 0; i < projected.free_ends; ++i) s_.free_ends[i] = into_region(s_.free_ends[i]);
   const InsertionStats st = InsertRays(*r.grid, Point2{to_region.x, to_region.y}, Span<const Point2>(s_.hits.data(), projected.hits),
-                                       Span<const Point2>(s_.free_ends.data(), projected.free_ends), config_.grid, stamp_, s_.scratch);
+                                       Span<const Point2>(s_.free_ends.data(), projected.free_ends), config_.grid, stamp_, s_.scratch,
+                                       config_.front_end.region_miss_range_m);
   ++r.scans_inserted;
   counters_.updates_out_of_box += static_cast<std::uint32_t>(st.out_of_box);
   counters_.updates_dropped_pool_full += static_cast<std::uint32_t>(st.dropped_pool_full);

@@ -55,6 +55,7 @@ struct FrontEndStorage {
   Span<Point2> free_ends;
   Span<Point2> target;     // second-registration target points (submap obstacle cells)
   Span<CellIndex> scratch;
+  Span<Correspondence> correspondences;  // registration scratch, kMaxBeams
 };
 
 class FrontEnd {

@@ -92,6 +92,7 @@ class Mapper {
     s.free_ends = Span<Point2>(free_ends_, Profile::kMaxBeams);
     s.target = Span<Point2>(target_, kSecondTargetPoints);
     s.scratch = Span<CellIndex>(scratch_, Profile::kMaxBeams);
+    s.correspondences = Span<Correspondence>(correspondences_, Profile::kMaxBeams);
     return s;
   }
   Span<const PlacedGrid> PlaceRegions(PlacedGrid* placed) const {
@@ -114,6 +115,8 @@ class Mapper {
   Point2 free_ends_[Profile::kMaxBeams];
   Point2 target_[kSecondTargetPoints];
   CellIndex scratch_[Profile::kMaxBeams];
+  // Registration scratch for a scan's points (the second registration's larger target goes without).
+  Correspondence correspondences_[Profile::kMaxBeams];
   Pose2 last_increment_pose_;
   FrontEnd front_end_;  // last: constructed from the storage above
 };

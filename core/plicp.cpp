@@ -55,8 +55,10 @@ float Residual(const Correspondence& c, Point2 w) {
 }  // namespace
 
 RegistrationResult RunPlicp(const RegistrationReference& ref, Span<const Point2> target, Pose2 initial,
-                            const PosePrior* prior, const PlicpConfig& config, CorrespondenceFn find) {
+                            const PosePrior* prior, const PlicpConfig& config, CorrespondenceFn find,
+                            Span<Correspondence> scratch) {
   RegistrationResult result;
+  const bool can_cache = scratch.size() >= target.size();
   Pose2 pose = initial;
   std::uint32_t last_hash = 0, older_hash = 0;  // correspondence sets of the last two iterations
   bool fine_phase = false;
@@ -71,13 +73,16 @@ RegistrationResult RunPlicp(const RegistrationReference& ref, Span<const Point2>
     // correctly matched wall can all lie above 2 p70 (an offset along one axis shows only on the
     // walls across it), and trimming them would remove exactly the information needed.
     float threshold = config.gate_m;
+    const bool cached = can_cache && config.trim && fine_phase;  // pass 1 fills scratch, pass 2 reads it
     if (config.trim && fine_phase) {
       Histogram hist;
       const float bin_m = config.gate_m / kBins, inv_bin = 1.0f / bin_m;
       for (std::size_t i = 0; i < target.size(); ++i) {
         Correspondence corr;
         const Point2 w = to_world(target[i]);
-        if (!find(ref, w, config, &corr)) continue;
+        const bool found = find(ref, w, config, &corr);
+        if (cached) scratch[i] = found ? corr : Correspondence{};  // ref kNoCell: none
+        if (!found) continue;
         const float r = Residual(corr, w);
         if (r <= config.gate_m) hist.Add(r, inv_bin);
       }
@@ -94,7 +99,12 @@ RegistrationResult RunPlicp(const RegistrationReference& ref, Span<const Point2>
     for (std::size_t i = 0; i < target.size(); ++i) {
       Correspondence corr;
       const Point2 w = to_world(target[i]);
-      if (!find(ref, w, config, &corr)) continue;
+      if (cached) {
+        corr = scratch[i];
+        if (corr.ref == kNoCell) continue;
+      } else if (!find(ref, w, config, &corr)) {
+        continue;
+      }
       hash = hash * 31u + corr.ref + 1u;
       const float r_abs = Residual(corr, w);
       if (r_abs > threshold || r_abs > config.gate_m) continue;
@@ -200,8 +210,8 @@ bool FindLineFeature(const RegistrationReference& ref, Point2 w, const PlicpConf
 }  // namespace
 
 RegistrationResult RegisterImproved(const RegistrationReference& ref, Span<const Point2> target, Pose2 initial,
-                                    const PosePrior* prior, const PlicpConfig& config) {
-  return RunPlicp(ref, target, initial, prior, config, &FindLineFeature);
+                                    const PosePrior* prior, const PlicpConfig& config, Span<Correspondence> scratch) {
+  return RunPlicp(ref, target, initial, prior, config, &FindLineFeature, scratch);
 }
 
 }  // namespace dpcr

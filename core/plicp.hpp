@@ -79,12 +79,17 @@ using CorrespondenceFn = bool (*)(const RegistrationReference& ref, Point2 w, co
                                   Correspondence* out);
 
 // The shared solver. `target`: points in the target frame; `initial`: target frame in the world
-// frame; `prior` may be null.
+// frame; `prior` may be null. `scratch` (optional, at least target.size() entries): the trimmed
+// iterations keep the correspondences their residual pass found for the solve pass (same pose,
+// same answers) instead of looking them up twice; the result is the same with or without.
+// A found correspondence has ref != kNoCell.
 RegistrationResult RunPlicp(const RegistrationReference& ref, Span<const Point2> target, Pose2 initial,
-                            const PosePrior* prior, const PlicpConfig& config, CorrespondenceFn find);
+                            const PosePrior* prior, const PlicpConfig& config, CorrespondenceFn find,
+                            Span<Correspondence> scratch = Span<Correspondence>());
 
 // Improved PLICP: point to the line feature of the nearest reference cell (paper §3.2.1 step 3).
 RegistrationResult RegisterImproved(const RegistrationReference& ref, Span<const Point2> target, Pose2 initial,
-                                    const PosePrior* prior, const PlicpConfig& config);
+                                    const PosePrior* prior, const PlicpConfig& config,
+                                    Span<Correspondence> scratch = Span<Correspondence>());
 
 }  // namespace dpcr

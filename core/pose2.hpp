@@ -20,6 +20,8 @@ struct Point2 {
   float y = 0.0f;
 };
 
+struct PointTransform;
+
 struct Pose2 {
   float x = 0.0f;
   float y = 0.0f;
@@ -27,11 +29,7 @@ struct Pose2 {
 
   static Pose2 Identity() { return Pose2{}; }
 
-  Point2 Apply(Point2 p) const {
-    const float c = std::cos(theta);
-    const float s = std::sin(theta);
-    return Point2{c * p.x - s * p.y + x, s * p.x + c * p.y + y};
-  }
+  inline Point2 Apply(Point2 p) const;
 
   Pose2 Inverse() const {
     const float c = std::cos(theta);
@@ -45,6 +43,16 @@ struct Pose2 {
     return Pose2{c * b.x - s * b.y + a.x, s * b.x + c * b.y + a.y, NormalizeAngle(a.theta + b.theta)};
   }
 };
+
+// Pose2::Apply with the cosine and sine taken once, for many points (the same floats as Apply;
+// a loop over Apply recomputes them: its stores may alias the pose).
+struct PointTransform {
+  explicit PointTransform(const Pose2& pose) : c(std::cos(pose.theta)), s(std::sin(pose.theta)), x(pose.x), y(pose.y) {}
+  Point2 operator()(Point2 p) const { return Point2{c * p.x - s * p.y + x, s * p.x + c * p.y + y}; }
+  float c, s, x, y;
+};
+
+inline Point2 Pose2::Apply(Point2 p) const { return PointTransform(*this)(p); }
 
 // The pose of `to` expressed in the frame of `from`: from.Inverse() * to.
 inline Pose2 Between(const Pose2& from, const Pose2& to) { return from.Inverse() * to; }

@@ -29,8 +29,10 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
 
   // 1. Reserve every distinct hit cell, so no ray of this scan can clear it.
   std::size_t reserved = 0;
-  for (const Point2& p : hits) {
-    const CellIndex c = CellOf(p.x, p.y, res);
+  CellIndex next_hit = hits.empty() ? start : CellOf(hits[0].x, hits[0].y, res);
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    const CellIndex c = next_hit;
+    if (i + 1 < hits.size()) next_hit = CellOf(hits[i + 1].x, hits[i + 1].y, res);  // ahead, as below
     if (grid.Reserve(c, stamp)) {
       scratch[reserved++] = c;
     } else if (!grid.box().Contains(c)) {
@@ -42,32 +44,46 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
   }
   // 2. Misses along every ray, each cell once. The box is convex and rays start inside it:
   // a ray that leaves it never comes back, so tracing stops there (one out_of_box per ray).
-  const auto miss = [&](CellIndex from, const Point2& p) {
+  const auto miss = [&](CellIndex from, CellIndex to) {
     const TiledGrid::SegmentStats s =
-        grid.UpdateSegment(from, CellOf(p.x, p.y, res), config.miss_delta, config.clamp_min, config.clamp_max, stamp);
+        grid.UpdateSegment(from, to, config.miss_delta, config.clamp_min, config.clamp_max, stamp);
     stats.miss_cells += s.applied;
     stats.out_of_box += s.out_of_box;
     stats.dropped_pool_full += s.dropped_pool_full;
   };
   const float range2 = miss_range_m * miss_range_m;
   const float margin2 = config.hit_margin_m * config.hit_margin_m;
-  for (const Point2& p : hits) {
+  // The cells a ray to hit p clears: from `start` (or miss_range_m before the hit) up to
+  // hit_margin_m before it; none when the hit is within the margin.
+  struct RayCells {
+    CellIndex from, to;
+    bool clears;
+  };
+  const auto ray_cells = [&](const Point2& p) {
     const float dx = p.x - origin.x, dy = p.y - origin.y;
     const float d2 = dx * dx + dy * dy;
-    if (d2 <= margin2) continue;  // the whole ray is within the margin: nothing to clear
+    if (d2 <= margin2) return RayCells{start, start, false};
     const float d = std::sqrt(d2);
-    // Clear up to hit_margin_m before the return (the end cell itself is not cleared).
-    const float end_k = 1.0f - config.hit_margin_m / d;
-    const Point2 end{origin.x + end_k * dx, origin.y + end_k * dy};
-    if (miss_range_m <= 0.0f || d2 <= range2) {
-      miss(start, end);
-    } else {
-      // Start miss_range_m before the hit (a cell of the full ray's neighbourhood, not always on it).
-      const float k = 1.0f - miss_range_m / d;
-      miss(CellOf(origin.x + k * dx, origin.y + k * dy, res), end);
+    CellIndex to = CellOf(p.x, p.y, res);
+    if (config.hit_margin_m > 0.0f) {
+      const float k = 1.0f - config.hit_margin_m / d;
+      to = CellOf(origin.x + k * dx, origin.y + k * dy, res);
     }
+    if (miss_range_m <= 0.0f || d2 <= range2) return RayCells{start, to, true};
+    // Start miss_range_m before the hit (a cell of the full ray's neighbourhood, not always on it).
+    const float k = 1.0f - miss_range_m / d;
+    return RayCells{CellOf(origin.x + k * dx, origin.y + k * dy, res), to, true};
+  };
+  // The next ray's cells (a chain of square root and divisions) are computed before this ray is
+  // walked, so that they run in the walk's shadow instead of after it.
+  RayCells next{start, start, false};
+  if (!hits.empty()) next = ray_cells(hits[0]);
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    const RayCells ray = next;
+    if (i + 1 < hits.size()) next = ray_cells(hits[i + 1]);
+    if (ray.clears) miss(ray.from, ray.to);
   }
-  for (const Point2& p : free_ends) miss(start, p);
+  for (const Point2& p : free_ends) miss(start, CellOf(p.x, p.y, res));
   // 3. The reserved hits (stamp 0: already marked for this scan).
   for (std::size_t i = 0; i < reserved; ++i) {
     Count(grid.Update(scratch[i], config.hit_delta, config.clamp_min, config.clamp_max, 0), &stats,

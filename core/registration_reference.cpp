@@ -6,93 +6,31 @@
 #include "core/assert.hpp"
 
 namespace dpcr {
-namespace {
-
-// Distance-transform skip mask: up to 32 x 32 blocks of 16 x 16 cells (windows up to 512 x 512 cells).
-constexpr int kBlockShift = 4;
-constexpr int kBlockCells = 1 << kBlockShift;
-constexpr int kMaxBlocks = 1024;
-
-std::int32_t Dist2(const ObstacleCell& c, int x, int y) {
-  const std::int32_t dx = c.x - x, dy = c.y - y;
-  return dx * dx + dy * dy;
-}
-
-// Neighbours read by each of the four raster sweeps, in the order they are tried (the order
-// decides ties, so it is part of the result).
-constexpr int kForward[4][2] = {{-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
-constexpr int kBackward[4][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}};
-constexpr int kRight[1][2] = {{1, 0}};
-constexpr int kLeft[1][2] = {{-1, 0}};
-
-// The nearest-seed table during the distance transform.
-struct SeedTable {
-  std::uint16_t* nearest;
-  const ObstacleCell* cells;
-  int w, h;
-
-  // Takes the nearest of cell (x, y)'s seed and its neighbours' seeds (first wins on ties).
-  // kInside: every neighbour is in the window (no bounds checks; most cells).
-  template <bool kInside, int kN>
-  void Relax(int x, int y, const int (&offsets)[kN][2]) const {
-    std::uint16_t* slot = nearest + y * w + x;
-    std::uint16_t cur = *slot;
-    std::int32_t cur_d = cur == kNoCell ? INT32_MAX : Dist2(cells[cur], x, y);
-    if (cur_d == 0) return;  // an obstacle cell is its own nearest
-    for (int k = 0; k < kN; ++k) {
-      const int nx = x + offsets[k][0], ny = y + offsets[k][1];
-      if (!kInside && (nx < 0 || ny < 0 || nx >= w || ny >= h)) continue;
-      const std::uint16_t cand = nearest[ny * w + nx];
-      if (cand == kNoCell || cand == cur) continue;
-      const std::int32_t d = Dist2(cells[cand], x, y);
-      if (d < cur_d) cur = cand, cur_d = d;
-    }
-    *slot = cur;
-  }
-
-  // One row of a sweep, x ascending (dir > 0) or descending, over the active 16-cell blocks only
-  // (inactive cells would be no-ops). `row_inside`: the rows the offsets reach exist.
-  template <int kN>
-  void SweepRow(int y, int dir, const int (&offsets)[kN][2], bool row_inside, const bool* active_row,
-                int blocks_x) const {
-    for (int i = 0; i < blocks_x; ++i) {
-      const int bx = dir > 0 ? i : blocks_x - 1 - i;
-      if (!active_row[bx]) continue;
-      const int x0 = bx << kBlockShift, x1 = (x0 + kBlockCells < w ? x0 + kBlockCells : w);
-      if (dir > 0) {
-        for (int x = x0; x < x1; ++x) RelaxAt(x, y, offsets, row_inside);
-      } else {
-        for (int x = x1 - 1; x >= x0; --x) RelaxAt(x, y, offsets, row_inside);
-      }
-    }
-  }
-
-  template <int kN>
-  void RelaxAt(int x, int y, const int (&offsets)[kN][2], bool row_inside) const {
-    if (row_inside && x > 0 && x < w - 1) {
-      Relax<true>(x, y, offsets);
-    } else {
-      Relax<false>(x, y, offsets);
-    }
-  }
-};
-
-}  // namespace
 
 RegistrationReference::RegistrationReference(Span<ObstacleCell> cells, Span<std::uint16_t> nearest,
-                                             Span<std::uint16_t> scratch, Span<LineFeature> lines,
-                                             Span<RefitSums> refit, int max_w, int max_h)
-    : cells_(cells), nearest_(nearest), scratch_(scratch), lines_(lines), refit_(refit), max_w_(max_w), max_h_(max_h) {
+                                             Span<std::uint64_t> obstacle_blocks, Span<std::uint16_t> scratch,
+                                             Span<LineFeature> lines, Span<RefitSums> refit, int max_w, int max_h)
+    : cells_(cells),
+      nearest_(nearest),
+      obstacle_blocks_(obstacle_blocks),
+      scratch_(scratch),
+      lines_(lines),
+      refit_(refit),
+      max_w_(max_w),
+      max_h_(max_h) {
   DPCR_ASSERT(nearest.size() == static_cast<std::size_t>(max_w * max_h) && scratch.size() >= cells.size());
   DPCR_ASSERT(refit.empty() || refit.size() >= lines.size());
-  DPCR_ASSERT(cells.size() < kNoCell);
-  DPCR_ASSERT(((max_w + kBlockCells - 1) >> kBlockShift) * ((max_h + kBlockCells - 1) >> kBlockShift) <= kMaxBlocks);
+  DPCR_ASSERT(cells.size() < kNoneNear);
+  const int blocks_x = (max_w + 7) >> kBlockShift, blocks_y = (max_h + 7) >> kBlockShift;
+  DPCR_ASSERT(obstacle_blocks.size() == static_cast<std::size_t>(blocks_x * blocks_y));
+  DPCR_ASSERT(blocks_x <= 64 && blocks_y <= kMaxBlockRows);
 }
 
 std::uint16_t RegistrationReference::ObstacleAt(int x, int y) const {
   if (x < 0 || y < 0 || x >= w_ || y >= h_) return kNoCell;
+  // Obstacle cells hold their own index; other entries are markers or another cell's index.
   const std::uint16_t k = nearest_[static_cast<std::size_t>(y * w_ + x)];
-  return (k != kNoCell && cells_[k].x == x && cells_[k].y == y) ? k : kNoCell;
+  return (k < cell_count_ && cells_[k].x == x && cells_[k].y == y) ? k : kNoCell;
 }
 
 Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const ReferenceConfig& config,
@@ -108,6 +46,10 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
   cell_count_ = line_count_ = 0;
   const std::size_t n_table = static_cast<std::size_t>(w_ * h_);
   for (std::size_t i = 0; i < n_table; ++i) nearest_[i] = kNoCell;
+  blocks_x_ = (w_ + 7) >> kBlockShift;
+  const std::size_t n_blocks = static_cast<std::size_t>(blocks_x_ * ((h_ + 7) >> kBlockShift));
+  for (std::size_t i = 0; i < n_blocks; ++i) obstacle_blocks_[i] = 0;
+  for (std::uint64_t& row : occupied_blocks_) row = 0;
 
   // 1. Obstacle cells, tile by tile: only allocated tiles cost anything.
   const CellBox box = grid.box();
@@ -121,6 +63,12 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
       for (int ly = 0; ly < kTileSide; ++ly) {
         const int y = y0 + ly;
         if (y < 0 || y >= h_) continue;
+        // Most rows hold no obstacle cell: a branch-free (vectorised) pass says so. kUnknownCell is
+        // below any threshold.
+        const std::int16_t* row = values + ly * kTileSide;
+        bool any = false;
+        for (int lx = 0; lx < kTileSide; ++lx) any |= row[lx] > config.obstacle_threshold;
+        if (!any) continue;
         for (int lx = 0; lx < kTileSide; ++lx) {
           const int x = x0 + lx;
           const std::int16_t v = values[ly * kTileSide + lx];
@@ -136,6 +84,9 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
           // Q10 log-odds / 64: up to 511 for an unclamped submap sum, 56 at the regional clamp.
           if (config.weight_by_evidence) c.weight = static_cast<std::uint16_t>(1 + (v >> 6));
           nearest_[static_cast<std::size_t>(y * w_ + x)] = static_cast<std::uint16_t>(cell_count_++);
+          obstacle_blocks_[static_cast<std::size_t>((y >> kBlockShift) * blocks_x_ + (x >> kBlockShift))] |=
+              std::uint64_t{1} << (((y & 7) << 3) | (x & 7));
+          occupied_blocks_[y >> kBlockShift] |= std::uint64_t{1} << (x >> kBlockShift);
         }
       }
     }
@@ -161,53 +112,67 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
     l.cyy *= res_ * res_;
   }
 
-  // 3. Nearest obstacle cell per window cell: two raster passes propagating seed ids (vector
-  // distance transform, 8SSEDT-like; exact up to rare one-cell ties), then cut at the bound.
-  // Per cell the current distance is computed once, and a neighbour holding the same seed is
-  // skipped, so the usual cost is a few loads per cell.
-  // Blocks of 16x16 cells farther than the bound from every obstacle cell keep kNoCell and are
-  // not visited (any cell on the propagation path from a seed to a cell within the bound is itself
-  // within the bound of that seed, so skipping them changes no answer).
+  // 3. The nearest-obstacle table: every other cell (kNoCell = kNotSearched) is searched on its
+  // first query (Search).
   const float bound_cells = config.max_distance_m * inv_res_;
-  const std::int32_t bound2 = static_cast<std::int32_t>(bound_cells * bound_cells);
-  const int reach = static_cast<int>(bound_cells) + 1;
-  const int blocks_x = (w_ + kBlockCells - 1) >> kBlockShift;
-  bool active[kMaxBlocks];
-  for (bool& a : active) a = false;
-  for (std::size_t i = 0; i < cell_count_; ++i) {
-    const int bx0 = (cells_[i].x - reach < 0 ? 0 : cells_[i].x - reach) >> kBlockShift;
-    const int by0 = (cells_[i].y - reach < 0 ? 0 : cells_[i].y - reach) >> kBlockShift;
-    const int bx1 = (cells_[i].x + reach >= w_ ? w_ - 1 : cells_[i].x + reach) >> kBlockShift;
-    const int by1 = (cells_[i].y + reach >= h_ ? h_ - 1 : cells_[i].y + reach) >> kBlockShift;
-    for (int by = by0; by <= by1; ++by) {
-      for (int bx = bx0; bx <= bx1; ++bx) active[by * blocks_x + bx] = true;
+  bound2_ = static_cast<std::int32_t>(bound_cells * bound_cells);
+  reach_ = 0;
+  while ((reach_ + 1) * (reach_ + 1) <= bound2_) ++reach_;
+  if (stats != nullptr) *stats = st;
+  return (st.dropped_cells > 0 || st.extraction.lines_full) ? Status::kCapacityExceeded : Status::kOk;
+}
+
+std::uint16_t RegistrationReference::Search(int x, int y) const {
+  // Rows of blocks from the query's outwards; in each, only the blocks holding obstacle cells that
+  // could hold one no farther than the best so far. Among equally near cells the one with more
+  // evidence wins (the wall's core over a cell that range noise reached), then the smaller index:
+  // the answer does not depend on the visiting order.
+  std::int32_t best_d2 = bound2_;
+  std::uint16_t best = kNoCell;
+  const int by = y >> kBlockShift;
+  const int bx0 = (x - reach_ < 0 ? 0 : x - reach_) >> kBlockShift;
+  const int by0 = (y - reach_ < 0 ? 0 : y - reach_) >> kBlockShift;
+  const int bx1 = (x + reach_ >= w_ ? w_ - 1 : x + reach_) >> kBlockShift;
+  const int by1 = (y + reach_ >= h_ ? h_ - 1 : y + reach_) >> kBlockShift;
+  const std::uint64_t columns = (~std::uint64_t{0} >> (63 - bx1)) & (~std::uint64_t{0} << bx0);
+  const auto open_block = [&](int ix, int iy, std::int32_t gy2) {
+    const int x0 = ix << kBlockShift, y0 = iy << kBlockShift;
+    const int gx = x < x0 ? x0 - x : (x > x0 + 7 ? x - x0 - 7 : 0);
+    if (gx * gx + gy2 > best_d2) return;
+    std::uint64_t bits = obstacle_blocks_[static_cast<std::size_t>(iy * blocks_x_ + ix)];
+    while (bits != 0) {
+      const int b = __builtin_ctzll(bits);
+      bits &= bits - 1;
+      const int dx = x0 + (b & 7) - x, dy = y0 + (b >> 3) - y;
+      const std::int32_t d2 = dx * dx + dy * dy;
+      if (d2 > best_d2) continue;
+      const std::uint16_t k = nearest_[static_cast<std::size_t>((y0 + (b >> 3)) * w_ + x0 + (b & 7))];
+      if (d2 < best_d2 || best == kNoCell) {
+        best = k, best_d2 = d2;
+      } else {
+        const std::uint16_t kw = cells_[k].weight, bw = cells_[best].weight;
+        if (kw > bw || (kw == bw && k < best)) best = k;
+      }
     }
-  }
-  const SeedTable table{nearest_.data(), cells_.data(), w_, h_};
-  for (int y = 0; y < h_; ++y) {
-    const bool* row = active + (y >> kBlockShift) * blocks_x;
-    table.SweepRow(y, +1, kForward, y > 0, row, blocks_x);
-    table.SweepRow(y, -1, kRight, true, row, blocks_x);
-  }
-  for (int y = h_ - 1; y >= 0; --y) {
-    const bool* row = active + (y >> kBlockShift) * blocks_x;
-    table.SweepRow(y, -1, kBackward, y < h_ - 1, row, blocks_x);
-    table.SweepRow(y, +1, kLeft, true, row, blocks_x);
-  }
-  // Cut at the bound (inactive blocks hold kNoCell already).
-  for (int y = 0; y < h_; ++y) {
-    const bool* row = active + (y >> kBlockShift) * blocks_x;
-    for (int bx = 0; bx < blocks_x; ++bx) {
-      if (!row[bx]) continue;
-      const int x0 = bx << kBlockShift, x1 = (x0 + kBlockCells < w_ ? x0 + kBlockCells : w_);
-      for (int x = x0; x < x1; ++x) {
-        std::uint16_t& k = nearest_[static_cast<std::size_t>(y * w_ + x)];
-        if (k != kNoCell && Dist2(cells_[k], x, y) > bound2) k = kNoCell;
+  };
+  // Rows by, by - 1, by + 1, by - 2, ...: each farther row is at least as far from the query.
+  const int rows = (by - by0 > by1 - by ? by - by0 : by1 - by);
+  for (int r = 0; r <= rows; ++r) {
+    const std::int32_t gap = r == 0 ? 0 : ((r - 1) << kBlockShift) + 1;  // a lower bound on |dy|
+    if (gap * gap > best_d2) break;
+    for (int side = 0; side < (r == 0 ? 1 : 2); ++side) {
+      const int iy = side == 0 ? by - r : by + r;
+      if (iy < by0 || iy > by1) continue;
+      const int y0 = iy << kBlockShift;
+      const int gy = y < y0 ? y0 - y : (y > y0 + 7 ? y - y0 - 7 : 0);
+      const std::int32_t gy2 = gy * gy;
+      for (std::uint64_t blocks = occupied_blocks_[iy] & columns; blocks != 0; blocks &= blocks - 1) {
+        open_block(__builtin_ctzll(blocks), iy, gy2);
       }
     }
   }
-  if (stats != nullptr) *stats = st;
-  return (st.dropped_cells > 0 || st.extraction.lines_full) ? Status::kCapacityExceeded : Status::kOk;
+  nearest_[static_cast<std::size_t>(y * w_ + x)] = best == kNoCell ? kNoneNear : best;
+  return best;
 }
 
 void RegistrationReference::BeginPointRefit() {

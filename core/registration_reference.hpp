@@ -1,7 +1,8 @@
 // The reference side of a registration, built once per line re-extraction (every K1 scans for the
 // submap, K2 for a regional map, paper §3.3–3.4) so that each correspondence costs O(1):
 // obstacle cells of a window of a grid, their line features, a local normal per cell, and a
-// nearest-obstacle-cell table over the window (a bounded vector distance transform).
+// nearest-obstacle-cell table over the window, filled cell by cell on first query (registration
+// asks about a few thousand cells between builds, not the whole window).
 // Size-erased: RegistrationReferenceStorage<W, H, Cells, Lines> owns the arrays.
 #pragma once
 
@@ -39,8 +40,9 @@ class RegistrationReference {
     float n = 0.0f, u = 0.0f, v = 0.0f, uu = 0.0f, uv = 0.0f, vv = 0.0f;
   };
 
-  RegistrationReference(Span<ObstacleCell> cells, Span<std::uint16_t> nearest, Span<std::uint16_t> scratch,
-                        Span<LineFeature> lines, Span<RefitSums> refit, int max_w, int max_h);
+  RegistrationReference(Span<ObstacleCell> cells, Span<std::uint16_t> nearest, Span<std::uint64_t> obstacle_blocks,
+                        Span<std::uint16_t> scratch, Span<LineFeature> lines, Span<RefitSums> refit, int max_w,
+                        int max_h);
   RegistrationReference(const RegistrationReference&) = delete;
   RegistrationReference& operator=(const RegistrationReference&) = delete;
 
@@ -58,11 +60,16 @@ class RegistrationReference {
   void AddRefitPoint(Point2 p, float gate_m);
   int EndPointRefit(int min_points);
 
-  // Index of the obstacle cell nearest to world point p, kNoCell outside the window or bound.
+  // Index of the obstacle cell nearest to world point p (among equally near ones the heaviest,
+  // then the first), kNoCell outside the window or bound. A cell's first query searches, later
+  // ones read the cached answer.
   std::uint16_t Nearest(Point2 p) const {
     const float fx = (p.x - origin_.x) * inv_res_, fy = (p.y - origin_.y) * inv_res_;
     if (!(fx >= 0.0f && fy >= 0.0f && fx < static_cast<float>(w_) && fy < static_cast<float>(h_))) return kNoCell;
-    return nearest_[static_cast<std::size_t>(static_cast<int>(fy) * w_ + static_cast<int>(fx))];
+    const int x = static_cast<int>(fx), y = static_cast<int>(fy);
+    const std::uint16_t k = nearest_[static_cast<std::size_t>(y * w_ + x)];
+    if (k < kNoneNear) return k;
+    return k == kNotSearched ? Search(x, y) : kNoCell;
   }
   // The obstacle cell occupying window-local (x, y), or kNoCell.
   std::uint16_t ObstacleAt(int x, int y) const;
@@ -79,34 +86,54 @@ class RegistrationReference {
   float resolution_m() const { return res_; }
 
  private:
+  // Table entries besides cell indices: not searched yet (every entry but the obstacle cells'
+  // after a build, which hold their own index), and searched with no obstacle cell in the bound.
+  static constexpr std::uint16_t kNotSearched = kNoCell;
+  static constexpr std::uint16_t kNoneNear = 0xFFFE;
+  // Obstacle cells are also marked in 8 x 8-cell blocks, one bit per cell (bit 8 * ly + lx), and
+  // the blocks holding any in one bit per block of a row of blocks (windows up to 512 cells).
+  static constexpr int kBlockShift = 3;
+  static constexpr int kMaxBlockRows = 64;
+
+  // The nearest obstacle cell to window cell (x, y) within the bound; caches it in the table.
+  std::uint16_t Search(int x, int y) const;
+
   Span<ObstacleCell> cells_;
+  // A cache that Search fills, also through a const reference (queries are single-threaded).
   Span<std::uint16_t> nearest_;
+  Span<std::uint64_t> obstacle_blocks_;
+  std::uint64_t occupied_blocks_[kMaxBlockRows];  // bit bx of row by: block (bx, by) has an obstacle cell
   Span<std::uint16_t> scratch_;
   Span<LineFeature> lines_;
   Span<RefitSums> refit_;
   int max_w_, max_h_;
   int w_ = 0, h_ = 0;
+  int blocks_x_ = 0;
+  std::int32_t bound2_ = 0;  // squared distance bound, cells^2
+  int reach_ = 0;            // the largest per-axis offset within the bound, cells
   std::size_t cell_count_ = 0, line_count_ = 0;
   Point2 origin_;  // world position of the window's lower-left corner
   float res_ = 0.05f, inv_res_ = 20.0f;
 };
 
-// 256 x 256 window, 4096 cells, 512 lines: 128 KiB table + 40 KiB cells/scratch + 28 KiB lines,
-// + 12 KiB of point-refit sums when kPointRefit (a reference built from a grid alone, e.g. a
+// 256 x 256 window, 4096 cells, 512 lines: 128 KiB table + 8 KiB obstacle bits + 40 KiB
+// cells/scratch + 28 KiB lines, + 12 KiB of point-refit sums when kPointRefit (a reference built from a grid alone, e.g. a
 // regional map's, has no raw points to refit to and carries none).
 template <int kW, int kH, int kCells, int kLines, bool kPointRefit = true>
 class RegistrationReferenceStorage : public RegistrationReference {
-  static_assert(kCells < kNoCell, "cell ids are 16-bit");
+  static_assert(kCells < kNoCell - 1, "cell ids are 16-bit, two values are markers");
+  static constexpr int kBlocks = ((kW + 7) / 8) * ((kH + 7) / 8);
 
  public:
   RegistrationReferenceStorage()
       : RegistrationReference(Span<ObstacleCell>(cells_, kCells), Span<std::uint16_t>(nearest_, kW * kH),
-                              Span<std::uint16_t>(scratch_, kCells), Span<LineFeature>(lines_, kLines),
+                              Span<std::uint64_t>(obstacle_blocks_, kBlocks), Span<std::uint16_t>(scratch_, kCells), Span<LineFeature>(lines_, kLines),
                               Span<RefitSums>(refit_, kPointRefit ? kLines : 0), kW, kH) {}
 
  private:
   ObstacleCell cells_[kCells];
   std::uint16_t nearest_[kW * kH];
+  std::uint64_t obstacle_blocks_[kBlocks];
   std::uint16_t scratch_[kCells];
   LineFeature lines_[kLines];
   RefitSums refit_[kPointRefit ? kLines : 1];  // C++ has no empty arrays: one unused entry

@@ -44,7 +44,8 @@ SubmapScanView Submap::scan(int i) const {
 InsertionStats Submap::Insert(const Pose2& pose, Span<const Point2> points, const GridConfig& config) {
   // The same float operations on the same inputs give the same cells, so a removal visits
   // exactly the cells its insertion did.
-  for (std::size_t i = 0; i < points.size(); ++i) transformed_[i] = pose.Apply(points[i]);
+  const PointTransform to_submap(pose);
+  for (std::size_t i = 0; i < points.size(); ++i) transformed_[i] = to_submap(points[i]);
   if (++stamp_ == 0) stamp_ = 1;
   return InsertRays(*grid_, Point2{pose.x, pose.y}, Span<const Point2>(transformed_.data(), points.size()),
                     Span<const Point2>(), config, stamp_, scratch_, miss_range_m_);

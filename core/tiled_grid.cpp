@@ -99,6 +99,76 @@ bool TiledGrid::Reserve(CellIndex c, std::uint32_t stamp) {
   return tile != nullptr && MarkOnce(tile, offset, stamp);
 }
 
+namespace {
+
+// ApplyDelta with the settle rule fixed at compile time (the hot loop below).
+template <bool kSettle>
+void ApplyDeltaTo(std::int16_t* cell, std::int32_t delta, std::int32_t lo, std::int32_t hi) {
+  const std::int32_t old = *cell;
+  if (kSettle && (old == lo || old == hi)) return;
+  std::int32_t v = (old == kUnknownCell ? 0 : old) + delta;
+  v = v < lo ? lo : v;
+  v = v > hi ? hi : v;
+  *cell = static_cast<std::int16_t>(v);
+}
+
+// Updates one cell (once per scan when kStamped: bit lx of updated[ly] marks it).
+template <bool kStamped, bool kSettle>
+void UpdateCell(Tile* tile, std::int32_t lx, std::int32_t ly, std::int32_t delta, std::int32_t lo, std::int32_t hi) {
+  if (kStamped) {
+    const std::uint32_t bit = 1u << lx, word = tile->updated[ly];
+    if ((word & bit) != 0) return;
+    tile->updated[ly] = word | bit;
+  }
+  ApplyDeltaTo<kSettle>(&tile->cells[(ly << 5) | lx], delta, lo, hi);
+}
+
+// Walks the segment's cells inside one tile from tile-local (lx, ly), at most `left` of them,
+// updating each; returns how many it walked. Every step moves along the major axis (kXMajor: x),
+// so the run ends after a known number of steps unless the minor axis leaves the tile first,
+// which is checked only when it moves. The walk's state lives in locals
+// so that the loop keeps it in registers. tile == nullptr (pool full): walk only.
+template <bool kXMajor, bool kStamped, bool kSettle>
+std::int32_t WalkRun(Tile* tile, BresenhamWalk* walk, std::int32_t* lx_io, std::int32_t* ly_io, std::int32_t left,
+                     std::int32_t delta, std::int32_t lo, std::int32_t hi) {
+  // BresenhamWalk::Step with e2 = 2 err: x moves when e2 > -dy (err -= dy), y when e2 < dx
+  // (err += dx); along the major axis the test always passes.
+  const std::int32_t dx = walk->dx, dy = walk->dy;
+  const std::int32_t major_s = kXMajor ? walk->sx : walk->sy, minor_s = kXMajor ? walk->sy : walk->sx;
+  std::int32_t err = walk->err;
+  std::int32_t major = kXMajor ? *lx_io : *ly_io, minor = kXMajor ? *ly_io : *lx_io;
+  const std::int32_t to_edge = major_s > 0 ? 32 - major : major + 1;
+  const std::int32_t n = left < to_edge ? left : to_edge;
+  std::int32_t i = 0;
+  while (i < n) {
+    if (tile != nullptr) {
+      UpdateCell<kStamped, kSettle>(tile, kXMajor ? major : minor, kXMajor ? minor : major, delta, lo, hi);
+    }
+    ++i;
+    const std::int32_t e2 = 2 * err;
+    err += kXMajor ? -dy : dx;
+    major += major_s;
+    if (kXMajor ? e2 < dx : e2 > -dy) {
+      err += kXMajor ? dx : -dy;
+      minor += minor_s;
+      if (static_cast<std::uint32_t>(minor) >= 32u) break;
+    }
+  }
+  walk->err = err;
+  *lx_io = kXMajor ? major : minor;
+  *ly_io = kXMajor ? minor : major;
+  return i;
+}
+
+template <bool kStamped, bool kSettle>
+std::int32_t WalkRun(Tile* tile, BresenhamWalk* walk, std::int32_t* lx, std::int32_t* ly, std::int32_t left,
+                     std::int32_t delta, std::int32_t lo, std::int32_t hi) {
+  return walk->dx >= walk->dy ? WalkRun<true, kStamped, kSettle>(tile, walk, lx, ly, left, delta, lo, hi)
+                              : WalkRun<false, kStamped, kSettle>(tile, walk, lx, ly, left, delta, lo, hi);
+}
+
+}  // namespace
+
 TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::int16_t delta, std::int16_t lo,
                                                   std::int16_t hi, std::uint32_t stamp) {
   // TraceCells' Bresenham walk (same cells, same order), cut into runs of cells in one tile: the
@@ -125,21 +195,15 @@ TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::
     }
     const std::int32_t base_x = c.x - (c.x & 31), base_y = c.y - (c.y & 31);
     std::int32_t lx = c.x & 31, ly = c.y & 31;
-    int run = 0;
-    do {
-      if (tile != nullptr) {
-        const std::uint32_t bit = 1u << lx;
-        std::uint32_t& word = tile->updated[ly];
-        if (stamp == 0) {
-          ApplyDelta(&tile->cells[(ly << 5) | lx], delta, lo, hi, settle_at_bounds_);
-        } else if ((word & bit) == 0) {
-          word |= bit;
-          ApplyDelta(&tile->cells[(ly << 5) | lx], delta, lo, hi, settle_at_bounds_);
-        }
-      }
-      ++run;
-      walk.Step(&lx, &ly);
-    } while (--left > 0 && static_cast<std::uint32_t>(lx) < 32u && static_cast<std::uint32_t>(ly) < 32u);
+    std::int32_t run = 0;
+    if (stamp != 0) {
+      run = settle_at_bounds_ ? WalkRun<true, true>(tile, &walk, &lx, &ly, left, delta, lo, hi)
+                              : WalkRun<true, false>(tile, &walk, &lx, &ly, left, delta, lo, hi);
+    } else {
+      run = settle_at_bounds_ ? WalkRun<false, true>(tile, &walk, &lx, &ly, left, delta, lo, hi)
+                              : WalkRun<false, false>(tile, &walk, &lx, &ly, left, delta, lo, hi);
+    }
+    left -= run;
     if (tile != nullptr) {
       st.applied += run;
     } else {

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   m->add_option("--callgrind-stride", map.callgrind_stride,
                 "count every k-th AddScan under callgrind toggles and dump after it (run under callgrind)");
   m->add_option("--submap-miss-range", map.submap_miss_range_m, "override FrontEndConfig::submap_miss_range_m");
+  m->add_option("--region-miss-range", map.region_miss_range_m, "override FrontEndConfig::region_miss_range_m");
   m->add_option("--reference-max-distance", map.reference_max_distance_m, "override ReferenceConfig::max_distance_m");
   m->add_option("--k1", map.k1, "override K1 (submap line period)");
   m->add_option("--k2", map.k2, "override K2 (region line period)");

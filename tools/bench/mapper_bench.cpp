@@ -94,6 +94,7 @@ int Run(const MapperBenchOptions& o, Input<MapperType>& input) {
   static MapperType mapper;
   dpcr::MapperConfig config = input.config;
   if (o.submap_miss_range_m >= 0.0f) config.front_end.submap_miss_range_m = o.submap_miss_range_m;
+  if (o.region_miss_range_m >= 0.0f) config.front_end.region_miss_range_m = o.region_miss_range_m;
   if (o.reference_max_distance_m > 0.0f) {
     config.front_end.submap_reference.max_distance_m = o.reference_max_distance_m;
     config.front_end.region_reference.max_distance_m = o.reference_max_distance_m;

@@ -20,6 +20,7 @@ struct MapperBenchOptions {
   int callgrind_stride = 0;
   // Schedule / submap overrides (negative: the MapperConfig default).
   float submap_miss_range_m = -1.0f;
+  float region_miss_range_m = -1.0f;
   float reference_max_distance_m = -1.0f;
   int k1 = -1, k2 = -1, ks = -1, n = -1;
   int submap_threshold = -1, region_threshold = -1;  // ReferenceConfig::obstacle_threshold (Q10)
