@@ -26,9 +26,9 @@ struct GridConfig {
   bool settle_at_clamp = true;
   // A ray to a return clears cells only up to this distance before the return. Range noise
   // (1-3.5 cm on an LD06-class lidar) puts some returns of a wall in front of it and some
-  // behind: without the margin, the rays of the longer returns clear the wall's near side, so
-  // walls drift away from where the robot saw them from and regional maps turn. Apartment,
-  // 35 min, seeds 1-10: LocErr_ave mean 0.067 m at 0, 0.043 m at 0.05 (docs/front-end-accuracy.md).
+  // behind: without the margin, the rays of the longer returns clear the cells the shorter ones
+  // marked, scan after scan. Apartment, 35 min, seeds 1-10: LocErr_ave mean 0.067 m at 0,
+  // 0.043 m at 0.05 (measured before the speed merge; docs/front-end-accuracy.md).
   float hit_margin_m = 0.05f;
 };
 

@@ -26,6 +26,7 @@ struct InsertionStats {
 // clearing. Both in the grid's frame. `scratch` holds at least hits.size() cells.
 // `stamp` identifies the scan (non-zero, different from the previous scan's).
 // `miss_range_m` > 0: a ray to a hit clears only its last miss_range_m metres (free ends: whole).
+// A ray to a hit stops clearing config.hit_margin_m before it (GridConfig::hit_margin_m).
 InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hits,
                           Span<const Point2> free_ends, const GridConfig& config,
                           std::uint32_t stamp, Span<CellIndex> scratch, float miss_range_m = 0.0f);
