@@ -64,11 +64,9 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
     const float d2 = dx * dx + dy * dy;
     if (d2 <= margin2) return RayCells{start, start, false};
     const float d = std::sqrt(d2);
-    CellIndex to = CellOf(p.x, p.y, res);
-    if (config.hit_margin_m > 0.0f) {
-      const float k = 1.0f - config.hit_margin_m / d;
-      to = CellOf(origin.x + k * dx, origin.y + k * dy, res);
-    }
+    const float end_k = 1.0f - config.hit_margin_m / d;
+    const CellIndex to = config.hit_margin_m > 0.0f ? CellOf(origin.x + end_k * dx, origin.y + end_k * dy, res)
+                                                    : CellOf(p.x, p.y, res);  // exactly the hit's cell
     if (miss_range_m <= 0.0f || d2 <= range2) return RayCells{start, to, true};
     // Start miss_range_m before the hit (a cell of the full ray's neighbourhood, not always on it).
     const float k = 1.0f - miss_range_m / d;

@@ -117,8 +117,8 @@ class RegistrationReference {
 };
 
 // 256 x 256 window, 4096 cells, 512 lines: 128 KiB table + 8 KiB obstacle bits + 40 KiB
-// cells/scratch + 28 KiB lines, + 12 KiB of point-refit sums when kPointRefit (a reference built from a grid alone, e.g. a
-// regional map's, has no raw points to refit to and carries none).
+// cells/scratch + 28 KiB lines, + 12 KiB of point-refit sums when kPointRefit (a reference built
+// from a grid alone, e.g. a regional map's, has no raw points to refit to and carries none).
 template <int kW, int kH, int kCells, int kLines, bool kPointRefit = true>
 class RegistrationReferenceStorage : public RegistrationReference {
   static_assert(kCells < kNoCell - 1, "cell ids are 16-bit, two values are markers");
@@ -127,7 +127,8 @@ class RegistrationReferenceStorage : public RegistrationReference {
  public:
   RegistrationReferenceStorage()
       : RegistrationReference(Span<ObstacleCell>(cells_, kCells), Span<std::uint16_t>(nearest_, kW * kH),
-                              Span<std::uint64_t>(obstacle_blocks_, kBlocks), Span<std::uint16_t>(scratch_, kCells), Span<LineFeature>(lines_, kLines),
+                              Span<std::uint64_t>(obstacle_blocks_, kBlocks), Span<std::uint16_t>(scratch_, kCells),
+                              Span<LineFeature>(lines_, kLines),
                               Span<RefitSums>(refit_, kPointRefit ? kLines : 0), kW, kH) {}
 
  private:
