@@ -1,5 +1,7 @@
 #include "core/config.hpp"
 
+#include <cmath>
+
 namespace dpcr {
 
 Status Validate(const MapperConfig& c) {
@@ -10,7 +12,11 @@ Status Validate(const MapperConfig& c) {
   const bool lidar_ok = c.lidar.min_range_m >= 0.0f && c.lidar.max_range_m > c.lidar.min_range_m &&
                         c.lidar.no_return_free_m >= 0.0f;
   const FrontEndConfig& f = c.front_end;
-  const bool front_ok = f.submap_scans > 0 && f.submap_line_period > 0 && f.region_line_period > 0 &&
+  // Regions tile one cell lattice, so neighbouring regional maps are a whole number of cells apart
+  // (FrontEnd::SecondRegistration merges them by shifting cells).
+  const float cells_per_region = f.region_width_m / c.grid.resolution_m;
+  const bool lattice_ok = std::fabs(cells_per_region - std::round(cells_per_region)) < 1e-3f;
+  const bool front_ok = lattice_ok && f.submap_scans > 0 && f.submap_line_period > 0 && f.region_line_period > 0 &&
                         f.second_registration_period > 0 && f.region_width_m > 0.5f &&
                         (f.submap_miss_range_m == 0.0f || f.submap_miss_range_m > c.grid.hit_margin_m) &&
                         (f.region_miss_range_m == 0.0f || f.region_miss_range_m > c.grid.hit_margin_m) &&

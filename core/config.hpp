@@ -69,10 +69,11 @@ struct FrontEndConfig {
   int submap_refit_min_points = 10;
   float region_width_m = 4.0f;    // S
   float region_hysteresis_m = 0.3f;  // distance past a border before switching region
-  // A regional map is a reference for the second registration once it holds this many scans.
-  // Until then the submap registers against the map of the region the robot came from, while the
-  // robot is at least `reference_inner_margin_m` inside that map's box, so that a new region is
-  // built in the frame of the previous one instead of in its own (young, drifting) frame.
+  // The second registration aligns the submap to one reference made of the current regional map
+  // (once it holds more than the submap it was seeded from) and of the map of the region the robot
+  // came from, once that one holds `region_mature_scans` scans and while the robot is at least
+  // `reference_inner_margin_m` inside its box. A new region is so built in the frame of the
+  // previous one, and neighbouring maps keep pulling each other to one heading.
   int region_mature_scans = 100;
   float reference_inner_margin_m = 2.0f;
   // false: the odometry pipeline (dead reckoning + insertion), for comparison.

@@ -80,9 +80,11 @@ class FrontEnd {
  private:
   // Stages (budgeted): prediction = Predict + ProjectScan; first registration = RegisterScan;
   // second registration = RegisterSubmap; insertion = Submap::Add + InsertIntoRegion +
-  // SeedRegionFromSubmap; line extraction = RegistrationReference::Build + RefitSubmapLines.
+  // SeedRegionFromSubmap; line extraction = RegistrationReference::Build (submap) +
+  // BuildRegionReference + RefitSubmapLines.
   DPCR_STAGE Pose2 Predict(std::int64_t stamp_us);
   DPCR_STAGE void RegisterScan(std::size_t hits, const Pose2& predicted);
+  DPCR_STAGE void BuildRegionReference(const int (&maps)[2], int n);
   DPCR_STAGE void RegisterSubmap(RegionalMap& r);
   DPCR_STAGE void InsertIntoRegion(const ProjectedScan& projected);
   DPCR_STAGE void SeedRegionFromSubmap(RegionalMap& r);
@@ -90,7 +92,10 @@ class FrontEnd {
   DPCR_STAGE void RefitSubmapLines();
   void EnterRegion(bool first);
   void SecondRegistration();
-  int ReferenceRegion() const;
+  // The regional maps the second registration aligns to (1 or 2; 0: none yet); the first one's
+  // frame is the registration's frame.
+  int ReferenceMaps(int (&maps)[2]) const;
+  bool WellInside(const RegionalMap& r) const;
   void UpdateStatus();
 
   FrontEndStorage s_;
@@ -110,7 +115,8 @@ class FrontEnd {
   int region_count_ = 0;
   int current_region_ = -1;
   int previous_region_ = -1;  // the region the robot was in before current_region_
-  int reference_region_ = -1;  // whose lines region_reference holds
+  int reference_maps_[2] = {-1, -1};  // whose lines region_reference holds
+  int reference_map_count_ = 0;
   std::uint32_t scans_since_submap_lines_ = 0;
   std::uint32_t scans_since_region_lines_ = 0;
   std::uint32_t scans_since_second_ = 0;

@@ -36,11 +36,20 @@ std::uint16_t RegistrationReference::ObstacleAt(int x, int y) const {
 Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const ReferenceConfig& config,
                                     ReferenceBuildStats* stats) {
   ReferenceBuildStats st;
+  BeginBuild(window, grid.resolution_m());
+  AddGrid(grid, CellIndex{0, 0}, config, &st);
+  const Status s = FinishBuild(config, &st);
+  if (stats != nullptr) *stats = st;
+  return s;
+}
+
+void RegistrationReference::BeginBuild(CellBox window, float resolution_m) {
+  window_min_ = window.min;
   w_ = window.width() < max_w_ ? window.width() : max_w_;
   h_ = window.height() < max_h_ ? window.height() : max_h_;
   w_ = w_ > 0 ? w_ : 0;
   h_ = h_ > 0 ? h_ : 0;
-  res_ = grid.resolution_m();
+  res_ = resolution_m;
   inv_res_ = 1.0f / res_;
   origin_ = Point2{static_cast<float>(window.min.x) * res_, static_cast<float>(window.min.y) * res_};
   cell_count_ = line_count_ = 0;
@@ -50,7 +59,10 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
   const std::size_t n_blocks = static_cast<std::size_t>(blocks_x_ * ((h_ + 7) >> kBlockShift));
   for (std::size_t i = 0; i < n_blocks; ++i) obstacle_blocks_[i] = 0;
   for (std::uint64_t& row : occupied_blocks_) row = 0;
+}
 
+void RegistrationReference::AddGrid(const TiledGrid& grid, CellIndex offset, const ReferenceConfig& config,
+                                    ReferenceBuildStats* stats) {
   // 1. Obstacle cells, tile by tile: only allocated tiles cost anything.
   const CellBox box = grid.box();
   for (int ty = 0; ty < grid.tiles_y(); ++ty) {
@@ -58,7 +70,8 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
       const TileId id = grid.tile_at(tx, ty);
       if (id == kNoTile) continue;
       const std::int16_t* values = grid.pool()[id].cells;
-      const int x0 = box.min.x + tx * kTileSide - window.min.x, y0 = box.min.y + ty * kTileSide - window.min.y;
+      const int x0 = box.min.x + offset.x + tx * kTileSide - window_min_.x;
+      const int y0 = box.min.y + offset.y + ty * kTileSide - window_min_.y;
       if (x0 >= w_ || y0 >= h_ || x0 + kTileSide <= 0 || y0 + kTileSide <= 0) continue;
       for (int ly = 0; ly < kTileSide; ++ly) {
         const int y = y0 + ly;
@@ -73,17 +86,23 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
           const int x = x0 + lx;
           const std::int16_t v = values[ly * kTileSide + lx];
           if (x < 0 || x >= w_ || v == kUnknownCell || v <= config.obstacle_threshold) continue;
+          // Q10 log-odds / 64: up to 511 for an unclamped submap sum, 56 at the regional clamp.
+          const std::uint16_t weight = config.weight_by_evidence ? static_cast<std::uint16_t>(1 + (v >> 6)) : 1;
+          std::uint16_t& entry = nearest_[static_cast<std::size_t>(y * w_ + x)];
+          if (entry != kNoCell) {  // already an obstacle cell of an earlier grid: one cell, the larger weight
+            if (weight > cells_[entry].weight) cells_[entry].weight = weight;
+            continue;
+          }
           if (cell_count_ == cells_.size()) {
-            ++st.dropped_cells;
+            ++stats->dropped_cells;
             continue;
           }
           ObstacleCell& c = cells_[cell_count_];
           c = ObstacleCell{};
           c.x = static_cast<std::int16_t>(x);
           c.y = static_cast<std::int16_t>(y);
-          // Q10 log-odds / 64: up to 511 for an unclamped submap sum, 56 at the regional clamp.
-          if (config.weight_by_evidence) c.weight = static_cast<std::uint16_t>(1 + (v >> 6));
-          nearest_[static_cast<std::size_t>(y * w_ + x)] = static_cast<std::uint16_t>(cell_count_++);
+          c.weight = weight;
+          entry = static_cast<std::uint16_t>(cell_count_++);
           obstacle_blocks_[static_cast<std::size_t>((y >> kBlockShift) * blocks_x_ + (x >> kBlockShift))] |=
               std::uint64_t{1} << (((y & 7) << 3) | (x & 7));
           occupied_blocks_[y >> kBlockShift] |= std::uint64_t{1} << (x >> kBlockShift);
@@ -91,9 +110,12 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
       }
     }
   }
-  st.obstacle_cells = static_cast<int>(cell_count_);
+  stats->obstacle_cells = static_cast<int>(cell_count_);
+}
 
-  // 2. Local normals and line features, while the table still marks obstacle cells only.
+Status RegistrationReference::FinishBuild(const ReferenceConfig& config, ReferenceBuildStats* stats) {
+  ReferenceBuildStats& st = *stats;
+  // 2. (after every grid's step 1) Local normals and line features, while the table still marks obstacle cells only.
   const Span<ObstacleCell> used(cells_.data(), cell_count_);
   ComputeLocalNormals(used, nearest_.data(), w_, h_);
   const int n_lines = ExtractLines(used, nearest_.data(), w_, h_, scratch_, lines_, config.lines, &st.extraction);
@@ -118,7 +140,6 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
   bound2_ = static_cast<std::int32_t>(bound_cells * bound_cells);
   reach_ = 0;
   while ((reach_ + 1) * (reach_ + 1) <= bound2_) ++reach_;
-  if (stats != nullptr) *stats = st;
   return (st.dropped_cells > 0 || st.extraction.lines_full) ? Status::kCapacityExceeded : Status::kOk;
 }
 

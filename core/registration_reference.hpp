@@ -51,6 +51,14 @@ class RegistrationReference {
   // line capacity stay clutter); the reference is still usable either way.
   Status Build(const TiledGrid& grid, CellBox window, const ReferenceConfig& config, ReferenceBuildStats* stats);
 
+  // The same in three steps, for one reference over several grids on one cell lattice (the
+  // regional maps of neighbouring regions, FrontEnd::SecondRegistration): cells of `grid` are
+  // shifted by `offset` cells into the window's frame; a cell that is an obstacle in two grids
+  // is one cell with the larger weight. `stats` (not null) accumulates over the steps.
+  void BeginBuild(CellBox window, float resolution_m);
+  void AddGrid(const TiledGrid& grid, CellIndex offset, const ReferenceConfig& config, ReferenceBuildStats* stats);
+  Status FinishBuild(const ReferenceConfig& config, ReferenceBuildStats* stats);
+
   // Sub-cell refit (after Build): every line is refitted to the raw points near it, so that its
   // position is not the grid's quantisation of the wall (up to half a cell per wall, which
   // registration would turn into a pose offset). Points are in the grid's world frame; a point
@@ -113,6 +121,7 @@ class RegistrationReference {
   int reach_ = 0;            // the largest per-axis offset within the bound, cells
   std::size_t cell_count_ = 0, line_count_ = 0;
   Point2 origin_;  // world position of the window's lower-left corner
+  CellIndex window_min_;
   float res_ = 0.05f, inv_res_ = 20.0f;
 };
 

@@ -25,7 +25,8 @@ stage() {
     second_registration) incl 'dpcr::FrontEnd::RegisterSubmap(' ;;
     insertion) echo $(( $(incl 'dpcr::Submap::Add(') + $(incl 'dpcr::FrontEnd::InsertIntoRegion(') + \
                         $(incl 'dpcr::FrontEnd::SeedRegionFromSubmap(') )) ;;
-    line_extraction) echo $(( $(incl 'dpcr::RegistrationReference::Build(') + $(incl 'dpcr::FrontEnd::RefitSubmapLines(') )) ;;
+    line_extraction) echo $(( $(incl 'dpcr::RegistrationReference::Build(') + $(incl 'dpcr::FrontEnd::BuildRegionReference(') + \
+                              $(incl 'dpcr::FrontEnd::RefitSubmapLines(') )) ;;
   esac
 }
 SCANS=$(awk '$1 == "scans" {print $2}' "$OUT/log")

@@ -30,4 +30,10 @@ TEST_CASE("Validate rejects meaningless parameters") {
   bad = dpcr::MapperConfig{};
   bad.front_end.submap_miss_range_m = bad.grid.hit_margin_m;
   REQUIRE(dpcr::Validate(bad) == dpcr::Status::kInvalidArgument);
+  // Neighbouring regional maps must be a whole number of cells apart (4 m / 3 cm is not).
+  bad = dpcr::MapperConfig{};
+  bad.grid.resolution_m = 0.03f;
+  REQUIRE(dpcr::Validate(bad) == dpcr::Status::kInvalidArgument);
+  bad.front_end.region_width_m = 3.6f;
+  REQUIRE(dpcr::Validate(bad) == dpcr::Status::kOk);
 }

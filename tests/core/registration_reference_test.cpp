@@ -72,3 +72,46 @@ TEST_CASE("The nearest-obstacle table equals a brute-force search (random walls,
     RequireOracleTable(f, max_distance_m);
   }
 }
+
+TEST_CASE("A reference over two grids shifts the second one's cells and merges shared cells") {
+  GridFixture a, b;
+  // A wall at x = 1 m in both frames, one hit per cell in a's (Draw samples each cell 4 times).
+  for (int i = 0; i <= 100; ++i) a.Mark(Point2{1.01f, 1.01f + 0.05f * static_cast<float>(i)});
+  b.Draw(Segment{{1.01f, 1.01f}, {1.01f, 6.01f}});
+  b.Draw(Segment{{3.01f, 2.01f}, {3.01f, 5.01f}});  // and a wall of b's own
+  dpcr::ReferenceBuildStats single, both;
+  REQUIRE(a.Build(&single) == dpcr::Status::kOk);
+  const std::size_t a_cells = a.ref->cell_count();
+
+  // b's frame is 40 cells (2 m) left of a's: its x = 3 m wall lands on a's x = 1 m cells, its
+  // x = 1 m wall falls outside a's window, a's x = 1 m wall gains b's heavier evidence.
+  dpcr::RegistrationReference& ref = *a.ref;
+  ref.BeginBuild(a.grid->box(), 0.05f);
+  ref.AddGrid(*a.grid, dpcr::CellIndex{0, 0}, dpcr::ReferenceConfig{}, &both);
+  const dpcr::CellIndex wall_cell = dpcr::CellOf(1.01f, 3.01f, 0.05f);
+  const std::uint16_t before = ref.ObstacleAt(wall_cell.x, wall_cell.y);
+  REQUIRE(before != dpcr::kNoCell);
+  const std::uint16_t a_weight = ref.cell(before).weight;
+  ref.AddGrid(*b.grid, dpcr::CellIndex{-40, 0}, dpcr::ReferenceConfig{}, &both);
+  REQUIRE(ref.FinishBuild(dpcr::ReferenceConfig{}, &both) == dpcr::Status::kOk);
+
+  // b's x = 3 m wall (y 2..5 m) is a's x = 1 m wall's middle: no new cells there, only more weight.
+  REQUIRE(ref.cell_count() == a_cells);
+  REQUIRE(ref.ObstacleAt(wall_cell.x, wall_cell.y) != dpcr::kNoCell);
+  REQUIRE(ref.cell(ref.ObstacleAt(wall_cell.x, wall_cell.y)).weight > a_weight);
+  const dpcr::CellIndex end_cell = dpcr::CellOf(1.01f, 5.81f, 0.05f);  // only a's wall reaches y = 5.8 m
+  REQUIRE(ref.cell(ref.ObstacleAt(end_cell.x, end_cell.y)).weight == a_weight);
+  REQUIRE(both.dropped_cells == 0);
+  REQUIRE(ref.line_count() == static_cast<std::size_t>(single.lines));
+
+  // Shifted the other way (b 2 m right of a), b's walls land at x = 3 m and x = 5 m: new lines.
+  ref.BeginBuild(a.grid->box(), 0.05f);
+  dpcr::ReferenceBuildStats apart;
+  ref.AddGrid(*a.grid, dpcr::CellIndex{0, 0}, dpcr::ReferenceConfig{}, &apart);
+  ref.AddGrid(*b.grid, dpcr::CellIndex{40, 0}, dpcr::ReferenceConfig{}, &apart);
+  (void)ref.FinishBuild(dpcr::ReferenceConfig{}, &apart);
+  const dpcr::CellIndex moved = dpcr::CellOf(3.01f, 3.01f, 0.05f);
+  REQUIRE(ref.ObstacleAt(moved.x, moved.y) != dpcr::kNoCell);
+  REQUIRE(ref.cell_count() > a_cells);
+  REQUIRE(ref.line_count() == static_cast<std::size_t>(single.lines) + 2);
+}
