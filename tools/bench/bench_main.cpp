@@ -38,6 +38,8 @@ int main(int argc, char** argv) {
   m->add_option("--region-threshold", map.region_threshold, "override the regional reference's obstacle threshold (Q10)");
   m->add_option("--settle", map.settle, "override GridConfig::settle_at_clamp (0 or 1)");
   m->add_option("--hit-margin", map.hit_margin_m, "override GridConfig::hit_margin_m");
+  m->add_option("--inner-margin", map.inner_margin_m, "override FrontEndConfig::reference_inner_margin_m");
+  m->add_option("--mature-scans", map.mature_scans, "override FrontEndConfig::region_mature_scans");
   m->add_option("--trajectory", map.trajectory_path, "write the estimated trajectory (TUM)");
   CLI11_PARSE(app, argc, argv);
   if (r->parsed()) return dpcr_bench::RunRegistrationBench(reg);

@@ -107,6 +107,8 @@ int Run(const MapperBenchOptions& o, Input<MapperType>& input) {
   if (o.region_threshold >= 0) config.front_end.region_reference.obstacle_threshold = static_cast<std::int16_t>(o.region_threshold);
   if (o.settle >= 0) config.grid.settle_at_clamp = o.settle != 0;
   if (o.hit_margin_m >= 0.0f) config.grid.hit_margin_m = o.hit_margin_m;
+  if (o.inner_margin_m >= 0.0f) config.front_end.reference_inner_margin_m = o.inner_margin_m;
+  if (o.mature_scans > 0) config.front_end.region_mature_scans = o.mature_scans;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
   std::vector<double> us;
   us.reserve(input.scans.size());

@@ -26,6 +26,8 @@ struct MapperBenchOptions {
   int submap_threshold = -1, region_threshold = -1;  // ReferenceConfig::obstacle_threshold (Q10)
   int settle = -1;                                    // GridConfig::settle_at_clamp (0/1)
   float hit_margin_m = -1.0f;                         // GridConfig::hit_margin_m
+  float inner_margin_m = -1.0f;                       // FrontEndConfig::reference_inner_margin_m
+  int mature_scans = -1;                              // FrontEndConfig::region_mature_scans
   std::string trajectory_path;  // TUM output of the run (empty: none)
 };
 
