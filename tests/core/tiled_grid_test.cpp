@@ -1,6 +1,7 @@
 // Tiled grid: lazy tiles, bounds, clamping, once-per-scan rule, pool exhaustion.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <memory>
 
 #include "core/cell_line.hpp"
@@ -13,6 +14,21 @@ TEST_CASE("CellOf floors negative coordinates") {
   REQUIRE(dpcr::CellOf(0.01f, 0.01f, 0.05f) == CellIndex{0, 0});
   REQUIRE(dpcr::CellOf(-0.01f, 0.07f, 0.05f) == CellIndex{-1, 1});
   REQUIRE(dpcr::CellCentreX(CellIndex{-1, 0}, 0.05f) == Approx(-0.025f));
+}
+
+TEST_CASE("FloorToInt is std::floor for every float of the grid's range") {
+  // Whole numbers, halves, the floats either side of them, and a sweep of quotients like CellOf's.
+  const float samples[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -0.5f, 1e-7f, -1e-7f, 123456.0f, -123456.0f,
+                           16777216.0f, -16777216.0f, 1e9f, -1e9f};
+  for (const float v : samples) {
+    for (const float w : {std::nextafter(v, -2e9f), v, std::nextafter(v, 2e9f)}) {
+      REQUIRE(dpcr::FloorToInt(w) == static_cast<std::int32_t>(std::floor(w)));
+    }
+  }
+  for (int i = -200000; i <= 200000; ++i) {
+    const float v = static_cast<float>(i) * 0.0137f / 0.05f;
+    REQUIRE(dpcr::FloorToInt(v) == static_cast<std::int32_t>(std::floor(v)));
+  }
 }
 
 TEST_CASE("Tiles are allocated on first write only, and released on reset") {
