@@ -21,6 +21,12 @@ struct CellBox {
   std::int32_t height() const { return max.y - min.y; }
 };
 
+// A Bresenham segment of cells from `from` towards `to` (`to` excluded).
+struct CellSegment {
+  CellIndex from;
+  CellIndex to;
+};
+
 class TiledGrid {
  public:
   // `pool` may be attached later (arrays of grids are built before their pool is known).
@@ -66,6 +72,10 @@ class TiledGrid {
   // as the per-cell calls; the tile is looked up once per tile crossed, not once per cell.
   SegmentStats UpdateSegment(CellIndex a, CellIndex b, std::int16_t delta, std::int16_t lo, std::int16_t hi,
                              std::uint32_t stamp);
+  // UpdateSegment for each segment in turn, the stats summed. A scan's rays go in batches: the
+  // walk (stamp rule, settle rule) is chosen once per batch, not once per ray.
+  SegmentStats UpdateSegments(Span<const CellSegment> segments, std::int16_t delta, std::int16_t lo, std::int16_t hi,
+                              std::uint32_t stamp);
 
   // True when the cell's tile has been allocated (the cell may still be unknown).
   bool HasTile(CellIndex c) const;
@@ -73,6 +83,12 @@ class TiledGrid {
   // Marks a cell as updated in scan `stamp` without changing it; false if it already was
   // (or cannot be: out of box, pool full). Used to reserve hit cells before misses are cast.
   bool Reserve(CellIndex c, std::uint32_t stamp);
+  // Reserve(c, stamp) for each cell; the cells it reserved are moved, in order, to the front of
+  // `cells` and counted (the return value). Cells out of the box or lost to a full pool are counted
+  // in `lost` (out_of_box, dropped_pool_full); a cell already reserved in this scan is neither.
+  std::size_t ReserveCells(Span<CellIndex> cells, std::uint32_t stamp, SegmentStats* lost);
+  // Update(c, delta, lo, hi, 0) for cells reserved in this scan (in the box, tile allocated).
+  void UpdateReserved(Span<const CellIndex> cells, std::int16_t delta, std::int16_t lo, std::int16_t hi);
 
   int tiles_x() const { return tiles_x_; }
   int tiles_y() const { return tiles_y_; }
@@ -86,6 +102,14 @@ class TiledGrid {
   // The tile slot of a cell, -1 outside the box; `offset` gets the cell's place in its tile.
   int SlotOf(CellIndex c, int* offset) const;
   Tile* TileForWrite(int slot);
+  // UpdateSegments with the stamp and settle rules fixed at compile time, and one segment with
+  // the major axis fixed too (x when kXMajor); tiled_grid.cpp.
+  template <bool kStamped, bool kSettle>
+  SegmentStats WalkSegments(Span<const CellSegment> segments, std::int32_t delta, std::int32_t lo, std::int32_t hi,
+                            std::uint32_t stamp);
+  template <bool kXMajor, bool kStamped, bool kSettle>
+  void WalkSegment(CellSegment s, std::int32_t delta, std::int32_t lo, std::int32_t hi, std::uint32_t stamp,
+                   SegmentStats* st);
 
   TilePool* pool_;
   Span<TileId> index_;

@@ -104,13 +104,17 @@ TEST_CASE("A full tile pool drops the update and says so") {
 }
 
 TEST_CASE("UpdateSegment equals per-cell Update along TraceCells (random segments, box exits, full pool)") {
-  // Oracle: the tile-run walk must touch the same cells in the same order as TraceCells + Update.
+  // Oracle: the tile-run walk must touch the same cells in the same order as TraceCells + Update,
+  // with and without settled cells.
+  const bool settle = GENERATE(false, true);
   auto pool_a = std::make_unique<dpcr::TilePoolStorage<12>>();
   auto pool_b = std::make_unique<dpcr::TilePoolStorage<12>>();
   dpcr::TiledGridStorage<4, 4> fast(pool_a.get());
   dpcr::TiledGridStorage<4, 4> slow(pool_b.get());
   fast.Reset(CellIndex{-2, -2});
   slow.Reset(CellIndex{-2, -2});
+  fast.set_settle_at_bounds(settle);
+  slow.set_settle_at_bounds(settle);
   std::uint32_t seed = 12345;
   int dropped = 0, exits = 0;
   const auto next = [&seed](int lo, int hi) {
@@ -146,7 +150,52 @@ TEST_CASE("UpdateSegment equals per-cell Update along TraceCells (random segment
   REQUIRE(dropped > 0);  // both the full pool and box exits were exercised
   REQUIRE(exits > 0);
   REQUIRE(pool_a->used() == pool_b->used());
+  int at_bounds = 0;
   for (int y = -64; y < 64; ++y) {
-    for (int x = -64; x < 64; ++x) REQUIRE(fast.Get(CellIndex{x, y}) == slow.Get(CellIndex{x, y}));
+    for (int x = -64; x < 64; ++x) {
+      REQUIRE(fast.Get(CellIndex{x, y}) == slow.Get(CellIndex{x, y}));
+      at_bounds += (fast.Get(CellIndex{x, y}) == 3000 || fast.Get(CellIndex{x, y}) == -3000) ? 1 : 0;
+    }
+  }
+  REQUIRE(at_bounds > 0);  // settled cells were exercised
+}
+
+TEST_CASE("UpdateSegments equals UpdateSegment one segment at a time") {
+  const bool settle = GENERATE(false, true);
+  auto pool_a = std::make_unique<dpcr::TilePoolStorage<12>>();
+  auto pool_b = std::make_unique<dpcr::TilePoolStorage<12>>();
+  dpcr::TiledGridStorage<4, 4> batched(pool_a.get());
+  dpcr::TiledGridStorage<4, 4> single(pool_b.get());
+  batched.Reset(CellIndex{-2, -2});
+  single.Reset(CellIndex{-2, -2});
+  batched.set_settle_at_bounds(settle);
+  single.set_settle_at_bounds(settle);
+  std::uint32_t seed = 777;
+  const auto next = [&seed](int lo, int hi) {
+    seed = seed * 1664525u + 1013904223u;
+    return lo + static_cast<int>((seed >> 8) % static_cast<std::uint32_t>(hi - lo + 1));
+  };
+  dpcr::CellSegment segments[40];
+  for (std::uint32_t scan = 1; scan <= 300; ++scan) {
+    const std::size_t n = static_cast<std::size_t>(next(0, 40));
+    for (std::size_t i = 0; i < n; ++i) {
+      segments[i] = dpcr::CellSegment{CellIndex{next(-64, 63), next(-64, 63)}, CellIndex{next(-90, 90), next(-90, 90)}};
+    }
+    const std::int16_t delta = static_cast<std::int16_t>(next(-400, 400));
+    const dpcr::TiledGrid::SegmentStats b =
+        batched.UpdateSegments(dpcr::Span<const dpcr::CellSegment>(segments, n), delta, -3000, 3000, scan);
+    dpcr::TiledGrid::SegmentStats o;
+    for (std::size_t i = 0; i < n; ++i) {
+      const dpcr::TiledGrid::SegmentStats s = single.UpdateSegment(segments[i].from, segments[i].to, delta, -3000, 3000, scan);
+      o.applied += s.applied;
+      o.out_of_box += s.out_of_box;
+      o.dropped_pool_full += s.dropped_pool_full;
+    }
+    REQUIRE(b.applied == o.applied);
+    REQUIRE(b.out_of_box == o.out_of_box);
+    REQUIRE(b.dropped_pool_full == o.dropped_pool_full);
+  }
+  for (int y = -64; y < 64; ++y) {
+    for (int x = -64; x < 64; ++x) REQUIRE(batched.Get(CellIndex{x, y}) == single.Get(CellIndex{x, y}));
   }
 }
