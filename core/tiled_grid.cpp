@@ -100,19 +100,19 @@ bool TiledGrid::Reserve(CellIndex c, std::uint32_t stamp) {
 
 namespace {
 
-// Updates one cell (once per scan when kStamped: bit lx of updated[ly] marks it). A settled cell
-// is tested first and left unmarked: nothing in this scan can change it, so a later visit that
-// finds it unmarked skips it all the same (on the regional maps most visits end here).
+// Updates cell `i` of a tile (row-major, 32 cells a row), once per scan when kStamped: bit i & 31
+// of updated[i >> 5] marks it. A settled cell is tested first and left unmarked: nothing in this
+// scan can change it, so a later visit that finds it unmarked skips it all the same (on the
+// regional maps most visits end here).
 template <bool kStamped, bool kSettle>
-inline void UpdateCell(Tile* tile, std::int32_t lx, std::int32_t ly, std::int32_t delta, std::int32_t lo,
-                       std::int32_t hi) {
-  std::int16_t* cell = &tile->cells[(ly << 5) | lx];
+inline void UpdateCell(Tile* tile, std::int32_t i, std::int32_t delta, std::int32_t lo, std::int32_t hi) {
+  std::int16_t* cell = &tile->cells[i];
   const std::int32_t old = *cell;
   if (kSettle && (old == lo || old == hi)) return;
   if (kStamped) {
-    const std::uint32_t bit = 1u << lx, word = tile->updated[ly];
+    const std::uint32_t bit = 1u << (i & 31), word = tile->updated[i >> 5];
     if ((word & bit) != 0) return;
-    tile->updated[ly] = word | bit;
+    tile->updated[i >> 5] = word | bit;
   }
   std::int32_t v = (old == kUnknownCell ? 0 : old) + delta;
   v = v < lo ? lo : v;
@@ -127,7 +127,7 @@ inline void TiledGrid::WalkSegment(CellSegment s, std::int32_t delta, std::int32
                                    std::uint32_t stamp, SegmentStats* st) {
   // TraceCells' Bresenham walk (same cells, same order), cut into runs of cells in one tile: the
   // tile lookup, allocation and stamp check happen once per run, and inside a run the walk moves
-  // tile-local coordinates (a row of "updated" bits is one word: bit lx of updated[ly]).
+  // the cell's index in the tile (+-1 along x, +-32 along y), which also names its "updated" bit.
   // BresenhamWalk::Step always moves the major axis (x when kXMajor: dx >= dy) and moves the
   // minor one when its error term says so. Here the error is kept as in the classic integer line:
   // g = 2 * minor extent - major extent at the start (g = dx - 2 err when x is major, 2 err + dy
@@ -143,6 +143,9 @@ inline void TiledGrid::WalkSegment(CellSegment s, std::int32_t delta, std::int32
   std::int32_t g = 2 * minor_n - major_n;
   std::int32_t major = kXMajor ? a.x : a.y, minor = kXMajor ? a.y : a.x;  // global cells
   std::int32_t left = major_n;  // every step moves the major axis; b excluded
+  const std::int32_t two_major = 2 * major_n, two_minor = 2 * minor_n;
+  // A step's move of the index in a tile: 1 along x, 32 along y.
+  const std::int32_t major_step = kXMajor ? major_s : 32 * major_s, minor_step = kXMajor ? 32 * minor_s : minor_s;
   while (left > 0) {
     const std::int32_t x = kXMajor ? major : minor, y = kXMajor ? minor : major;
     const std::int32_t tx = (x >> 5) - origin_tile_.x, ty = (y >> 5) - origin_tile_.y;
@@ -156,31 +159,35 @@ inline void TiledGrid::WalkSegment(CellSegment s, std::int32_t delta, std::int32
       for (std::uint32_t& word : tile->updated) word = 0;
       tile->stamp = stamp;
     }
-    // Tile-local coordinates for the run.
+    // The run: tile-local, `cell` is the index in the tile; it ends at the tile edge along the
+    // major axis (n steps) or where the minor axis leaves the tile.
     const std::int32_t major_base = major & ~31, minor_base = minor & ~31;
-    std::int32_t lmajor = major & 31, lminor = minor & 31;
-    const std::int32_t to_edge = major_s > 0 ? 32 - lmajor : lmajor + 1;
+    const std::int32_t start = major & 31;
+    std::int32_t lminor = minor & 31;
+    std::int32_t cell = kXMajor ? (lminor << 5) | start : (start << 5) | lminor;
+    const std::int32_t to_edge = major_s > 0 ? 32 - start : start + 1;
     const std::int32_t n = left < to_edge ? left : to_edge;
-    std::int32_t i = 0;
-    while (i < n) {
-      if (tile != nullptr) {
-        UpdateCell<kStamped, kSettle>(tile, kXMajor ? lmajor : lminor, kXMajor ? lminor : lmajor, delta, lo, hi);
-      }
-      ++i;
-      lmajor += major_s;
-      const bool minor_moves = g > 0;
-      g += 2 * minor_n;
-      if (minor_moves) {
-        g -= 2 * major_n;
+    std::int32_t k = n;
+    while (k > 0) {
+      if (tile != nullptr) UpdateCell<kStamped, kSettle>(tile, cell, delta, lo, hi);
+      --k;
+      cell += major_step;
+      if (g > 0) {
+        g += two_minor - two_major;
+        cell += minor_step;
         lminor += minor_s;
         if (static_cast<std::uint32_t>(lminor) >= 32u) break;
+      } else {
+        g += two_minor;
       }
     }
-    left -= i;
+    const std::int32_t walked = n - k;
+    const std::int32_t lmajor = start + walked * major_s;
+    left -= walked;
     if (tile != nullptr) {
-      st->applied += i;
+      st->applied += walked;
     } else {
-      st->dropped_pool_full += i;  // nothing is freed while a scan is inserted: no retry
+      st->dropped_pool_full += walked;  // nothing is freed while a scan is inserted: no retry
     }
     major = major_base + lmajor;
     minor = minor_base + lminor;
