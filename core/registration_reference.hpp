@@ -120,9 +120,10 @@ class RegistrationReference {
   float res_ = 0.05f, inv_res_ = 20.0f;
 };
 
-// 256 x 256 window, 4096 cells, 512 lines: 128 KiB table + 8 KiB obstacle bits (+ 1 KiB of block-row masks) + 40 KiB
-// cells/scratch + 28 KiB lines, + 12 KiB of point-refit sums when kPointRefit (a reference built
-// from a grid alone, e.g. a regional map's, has no raw points to refit to and carries none).
+// 256 x 256 window, 4096 cells, 512 lines: 128 KiB table + 8 KiB obstacle bits + 1 KiB of
+// block-row masks + 40 KiB cells/scratch + 28 KiB lines, + 12 KiB of point-refit sums when
+// kPointRefit (a reference built from a grid alone, e.g. a regional map's, has no raw points to
+// refit to and carries none).
 template <int kW, int kH, int kCells, int kLines, bool kPointRefit = true>
 class RegistrationReferenceStorage : public RegistrationReference {
   static_assert(kCells < kNoCell - 1, "cell ids are 16-bit, two values are markers");
