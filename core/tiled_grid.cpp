@@ -1,5 +1,7 @@
 #include "core/tiled_grid.hpp"
 
+#include <cstddef>
+
 #include "core/assert.hpp"
 
 namespace dpcr {
@@ -105,7 +107,7 @@ namespace {
 // scan can change it, so a later visit that finds it unmarked skips it all the same (on the
 // regional maps most visits end here).
 template <bool kStamped, bool kSettle>
-inline void UpdateCell(Tile* tile, std::int32_t i, std::int32_t delta, std::int32_t lo, std::int32_t hi) {
+inline void UpdateCell(Tile* tile, std::ptrdiff_t i, std::int32_t delta, std::int32_t lo, std::int32_t hi) {
   std::int16_t* cell = &tile->cells[i];
   const std::int32_t old = *cell;
   if (kSettle && (old == lo || old == hi)) return;
@@ -160,27 +162,29 @@ inline void TiledGrid::WalkSegment(CellSegment s, std::int32_t delta, std::int32
       tile->stamp = stamp;
     }
     // The run: tile-local, `cell` is the index in the tile; it ends at the tile edge along the
-    // major axis (n steps) or where the minor axis leaves the tile.
+    // major axis (n >= 1 steps) or when the minor axis has used up its `room` in the tile.
     const std::int32_t major_base = major & ~31, minor_base = minor & ~31;
-    const std::int32_t start = major & 31;
-    std::int32_t lminor = minor & 31;
-    std::int32_t cell = kXMajor ? (lminor << 5) | start : (start << 5) | lminor;
+    const std::int32_t start = major & 31, lminor = minor & 31;
+    const std::int32_t room0 = minor_s > 0 ? 31 - lminor : lminor;
+    std::int32_t room = room0;
+    std::ptrdiff_t cell = kXMajor ? (lminor << 5) | start : (start << 5) | lminor;
     const std::int32_t to_edge = major_s > 0 ? 32 - start : start + 1;
     const std::int32_t n = left < to_edge ? left : to_edge;
     std::int32_t k = n;
-    while (k > 0) {
+    do {
       if (tile != nullptr) UpdateCell<kStamped, kSettle>(tile, cell, delta, lo, hi);
-      --k;
       cell += major_step;
       if (g > 0) {
         g += two_minor - two_major;
         cell += minor_step;
-        lminor += minor_s;
-        if (static_cast<std::uint32_t>(lminor) >= 32u) break;
+        if (--room < 0) {
+          --k;
+          break;
+        }
       } else {
         g += two_minor;
       }
-    }
+    } while (--k != 0);
     const std::int32_t walked = n - k;
     const std::int32_t lmajor = start + walked * major_s;
     left -= walked;
@@ -190,7 +194,7 @@ inline void TiledGrid::WalkSegment(CellSegment s, std::int32_t delta, std::int32
       st->dropped_pool_full += walked;  // nothing is freed while a scan is inserted: no retry
     }
     major = major_base + lmajor;
-    minor = minor_base + lminor;
+    minor = minor_base + lminor + (room0 - room) * minor_s;
   }
 }
 
