@@ -13,12 +13,14 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
   const float res = config.resolution_m;
   const CellIndex start = CellOf(origin.x, origin.y, res);
 
-  // 1. Reserve every distinct hit cell, so no ray of this scan can clear it.
+  // 1. The hits, each distinct cell once. They are marked as updated in this scan, so no ray of
+  // this scan can clear them (a miss would be skipped as a repeat).
   for (std::size_t i = 0; i < hits.size(); ++i) scratch[i] = CellOf(hits[i].x, hits[i].y, res);
-  TiledGrid::SegmentStats lost;
-  const std::size_t reserved = grid.ReserveCells(Span<CellIndex>(scratch.data(), hits.size()), stamp, &lost);
-  stats.out_of_box += lost.out_of_box;
-  stats.dropped_pool_full += lost.dropped_pool_full;
+  const TiledGrid::SegmentStats h = grid.UpdateCells(Span<const CellIndex>(scratch.data(), hits.size()), config.hit_delta,
+                                                     config.clamp_min, config.clamp_max, stamp);
+  stats.hit_cells = h.applied;
+  stats.out_of_box += h.out_of_box;
+  stats.dropped_pool_full += h.dropped_pool_full;
 
   // 2. Misses along every ray, each cell once. The box is convex and rays start inside it:
   // a ray that leaves it never comes back, so tracing stops there (one out_of_box per ray).
@@ -61,10 +63,6 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
   }
   for (const Point2& p : free_ends) queue(start, CellOf(p.x, p.y, res));
   flush();
-  // 3. The reserved hits (already marked for this scan).
-  grid.UpdateReserved(Span<const CellIndex>(scratch.data(), reserved), config.hit_delta, config.clamp_min,
-                      config.clamp_max);
-  stats.hit_cells = static_cast<int>(reserved);
   return stats;
 }
 

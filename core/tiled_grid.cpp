@@ -231,35 +231,26 @@ TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::
   return UpdateSegments(Span<const CellSegment>(&s, 1), delta, lo, hi, stamp);
 }
 
-std::size_t TiledGrid::ReserveCells(Span<CellIndex> cells, std::uint32_t stamp, SegmentStats* lost) {
-  // Reserve() per cell, with its lookups inlined: hits are ~a third of the rays' cost otherwise.
-  std::size_t kept = 0;
+TiledGrid::SegmentStats TiledGrid::UpdateCells(Span<const CellIndex> cells, std::int16_t delta, std::int16_t lo,
+                                               std::int16_t hi, std::uint32_t stamp) {
+  // Update() per cell, with its lookups inlined and repeats not counted.
+  SegmentStats st;
   for (const CellIndex c : cells) {
     int offset = 0;
     const int slot = SlotOf(c, &offset);
     if (slot < 0) {
-      ++lost->out_of_box;
+      ++st.out_of_box;
       continue;
     }
     Tile* tile = TileForWrite(slot);
     if (tile == nullptr) {
-      ++lost->dropped_pool_full;
+      ++st.dropped_pool_full;
     } else if (MarkOnce(tile, offset, stamp)) {
-      cells[kept++] = c;
+      ApplyDelta(&tile->cells[offset], delta, lo, hi, settle_at_bounds_);
+      ++st.applied;
     }
   }
-  return kept;
-}
-
-void TiledGrid::UpdateReserved(Span<const CellIndex> cells, std::int16_t delta, std::int16_t lo, std::int16_t hi) {
-  for (const CellIndex c : cells) {
-    int offset = 0;
-    const int slot = SlotOf(c, &offset);
-    DPCR_ASSERT(slot >= 0);
-    const TileId id = index_[static_cast<std::size_t>(slot)];
-    DPCR_ASSERT(id != kNoTile);
-    ApplyDelta(&(*pool_)[id].cells[offset], delta, lo, hi, settle_at_bounds_);
-  }
+  return st;
 }
 
 Status TiledGrid::Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::int16_t hi,

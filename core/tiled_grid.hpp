@@ -81,14 +81,12 @@ class TiledGrid {
   bool HasTile(CellIndex c) const;
 
   // Marks a cell as updated in scan `stamp` without changing it; false if it already was
-  // (or cannot be: out of box, pool full). Used to reserve hit cells before misses are cast.
+  // (or cannot be: out of box, pool full).
   bool Reserve(CellIndex c, std::uint32_t stamp);
-  // Reserve(c, stamp) for each cell; the cells it reserved are moved, in order, to the front of
-  // `cells` and counted (the return value). Cells out of the box or lost to a full pool are counted
-  // in `lost` (out_of_box, dropped_pool_full); a cell already reserved in this scan is neither.
-  std::size_t ReserveCells(Span<CellIndex> cells, std::uint32_t stamp, SegmentStats* lost);
-  // Update(c, delta, lo, hi, 0) for cells reserved in this scan (in the box, tile allocated).
-  void UpdateReserved(Span<const CellIndex> cells, std::int16_t delta, std::int16_t lo, std::int16_t hi);
+  // Update(c, delta, lo, hi, stamp) for each cell (stamp != 0); `applied` counts the cells
+  // updated, not the repeats.
+  SegmentStats UpdateCells(Span<const CellIndex> cells, std::int16_t delta, std::int16_t lo, std::int16_t hi,
+                           std::uint32_t stamp);
 
   int tiles_x() const { return tiles_x_; }
   int tiles_y() const { return tiles_y_; }
