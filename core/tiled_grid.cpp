@@ -124,7 +124,7 @@ inline void UpdateCell(Tile* tile, std::ptrdiff_t i, std::int32_t delta, std::in
 
 }  // namespace
 
-template <bool kXMajor, bool kStamped, bool kSettle>
+template <bool kXMajor, int kMajorS, bool kStamped, bool kSettle>
 inline void TiledGrid::WalkSegment(CellSegment s, std::int32_t delta, std::int32_t lo, std::int32_t hi,
                                    std::uint32_t stamp, SegmentStats* st) {
   // TraceCells' Bresenham walk (same cells, same order), cut into runs of cells in one tile: the
@@ -139,9 +139,10 @@ inline void TiledGrid::WalkSegment(CellSegment s, std::int32_t delta, std::int32
   static_assert(kTileSide == 32, "one 32-bit word of updated bits per tile row");
   const CellIndex a = s.from, b = s.to;
   const std::int32_t dx = b.x >= a.x ? b.x - a.x : a.x - b.x, dy = b.y >= a.y ? b.y - a.y : a.y - b.y;
-  const std::int32_t sx = b.x >= a.x ? 1 : -1, sy = b.y >= a.y ? 1 : -1;
   const std::int32_t major_n = kXMajor ? dx : dy, minor_n = kXMajor ? dy : dx;
-  const std::int32_t major_s = kXMajor ? sx : sy, minor_s = kXMajor ? sy : sx;
+  // The major axis's direction (kMajorS) is a template argument: one register less in the run.
+  const std::int32_t major_s = kMajorS;
+  const std::int32_t minor_s = kXMajor ? (b.y >= a.y ? 1 : -1) : (b.x >= a.x ? 1 : -1);
   std::int32_t g = 2 * minor_n - major_n;
   std::int32_t major = kXMajor ? a.x : a.y, minor = kXMajor ? a.y : a.x;  // global cells
   std::int32_t left = major_n;  // every step moves the major axis; b excluded
@@ -206,9 +207,15 @@ TiledGrid::SegmentStats TiledGrid::WalkSegments(Span<const CellSegment> segments
     const std::int32_t dx = s.to.x >= s.from.x ? s.to.x - s.from.x : s.from.x - s.to.x;
     const std::int32_t dy = s.to.y >= s.from.y ? s.to.y - s.from.y : s.from.y - s.to.y;
     if (dx >= dy) {
-      WalkSegment<true, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+      if (s.to.x >= s.from.x) {
+        WalkSegment<true, 1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+      } else {
+        WalkSegment<true, -1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+      }
+    } else if (s.to.y >= s.from.y) {
+      WalkSegment<false, 1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
     } else {
-      WalkSegment<false, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+      WalkSegment<false, -1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
     }
   }
   return st;

@@ -101,11 +101,12 @@ class TiledGrid {
   int SlotOf(CellIndex c, int* offset) const;
   Tile* TileForWrite(int slot);
   // UpdateSegments with the stamp and settle rules fixed at compile time, and one segment with
-  // the major axis fixed too (x when kXMajor); tiled_grid.cpp.
+  // its major axis (x when kXMajor) and that axis's direction (kMajorS, +-1) fixed too;
+  // tiled_grid.cpp.
   template <bool kStamped, bool kSettle>
   SegmentStats WalkSegments(Span<const CellSegment> segments, std::int32_t delta, std::int32_t lo, std::int32_t hi,
                             std::uint32_t stamp);
-  template <bool kXMajor, bool kStamped, bool kSettle>
+  template <bool kXMajor, int kMajorS, bool kStamped, bool kSettle>
   void WalkSegment(CellSegment s, std::int32_t delta, std::int32_t lo, std::int32_t hi, std::uint32_t stamp,
                    SegmentStats* st);
 
