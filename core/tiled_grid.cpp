@@ -241,6 +241,7 @@ TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::
 TiledGrid::SegmentStats TiledGrid::UpdateCells(Span<const CellIndex> cells, std::int16_t delta, std::int16_t lo,
                                                std::int16_t hi, std::uint32_t stamp) {
   // Update() per cell, with its lookups inlined and repeats not counted.
+  DPCR_ASSERT(stamp != 0);
   SegmentStats st;
   for (const CellIndex c : cells) {
     int offset = 0;

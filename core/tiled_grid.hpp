@@ -60,8 +60,8 @@ class TiledGrid {
   // cannot be allocated (the update is dropped), kOk otherwise (also when skipped as a repeat).
   Status Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::int16_t hi, std::uint32_t stamp);
 
-  // What UpdateSegment did: updates applied (repeats within the scan included), whether the
-  // segment left the box (tracing stops there), updates lost to a full pool.
+  // What UpdateSegment(s) did: updates applied (repeats within the scan included), whether the
+  // segment left the box (tracing stops there), updates lost to a full pool. Also UpdateCells'.
   struct SegmentStats {
     int applied = 0;
     int out_of_box = 0;
@@ -83,8 +83,9 @@ class TiledGrid {
   // Marks a cell as updated in scan `stamp` without changing it; false if it already was
   // (or cannot be: out of box, pool full).
   bool Reserve(CellIndex c, std::uint32_t stamp);
-  // Update(c, delta, lo, hi, stamp) for each cell (stamp != 0); `applied` counts the cells
-  // updated, not the repeats.
+  // Update(c, delta, lo, hi, stamp) for each cell (stamp != 0), the stats summed: `applied`
+  // counts the cells updated (not the repeats), the others the cells out of the box or lost to a
+  // full pool. InsertRays applies a scan's hits so, before its misses.
   SegmentStats UpdateCells(Span<const CellIndex> cells, std::int16_t delta, std::int16_t lo, std::int16_t hi,
                            std::uint32_t stamp);
 
