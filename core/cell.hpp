@@ -18,9 +18,16 @@ struct CellIndex {
   friend bool operator!=(CellIndex a, CellIndex b) { return !(a == b); }
 };
 
+// static_cast<std::int32_t>(std::floor(v)) for |v| < 2^31: the truncation, one less when v is
+// negative and not whole. Same integer, but ~5 instructions where an inlined floorf without SSE4.1
+// is ~17, and ray casting takes six floors per ray.
+inline std::int32_t FloorToInt(float v) {
+  const std::int32_t t = static_cast<std::int32_t>(v);
+  return v < static_cast<float>(t) ? t - 1 : t;
+}
+
 inline CellIndex CellOf(float x_m, float y_m, float resolution_m) {
-  return CellIndex{static_cast<std::int32_t>(std::floor(x_m / resolution_m)),
-                   static_cast<std::int32_t>(std::floor(y_m / resolution_m))};
+  return CellIndex{FloorToInt(x_m / resolution_m), FloorToInt(y_m / resolution_m)};
 }
 
 inline float CellCentreX(CellIndex c, float resolution_m) { return (static_cast<float>(c.x) + 0.5f) * resolution_m; }

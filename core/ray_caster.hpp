@@ -1,7 +1,7 @@
 // Inserts one scan's rays into a tiled grid: each ray's cells become misses and its endpoint
-// a hit, with at most one update per cell per scan. Hit cells are reserved first, so a cell
-// both crossed by one ray and hit by another counts as a hit (a thin wall seen at a grazing
-// angle survives); then misses are applied, then the hits.
+// a hit, with at most one update per cell per scan. Hits are applied first, so a cell both
+// crossed by one ray and hit by another counts as a hit (a thin wall seen at a grazing angle
+// survives): the misses of the scan skip it as already updated.
 #pragma once
 
 #include <cstdint>

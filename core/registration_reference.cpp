@@ -24,6 +24,32 @@ RegistrationReference::RegistrationReference(Span<ObstacleCell> cells, Span<std:
   const int blocks_x = (max_w + 7) >> kBlockShift, blocks_y = (max_h + 7) >> kBlockShift;
   DPCR_ASSERT(obstacle_blocks.size() == static_cast<std::size_t>(blocks_x * blocks_y));
   DPCR_ASSERT(blocks_x <= 64 && blocks_y <= kMaxBlockRows);
+  // The invariants Build relies on: the table is all kNotSearched, the blocks all clear, except
+  // where written_blocks_ and occupied_blocks_ say otherwise.
+  for (std::uint16_t& k : nearest_) k = kNotSearched;
+  for (std::uint64_t& b : obstacle_blocks_) b = 0;
+  for (std::uint64_t& row : occupied_blocks_) row = 0;
+  for (std::uint64_t& row : written_blocks_) row = 0;
+}
+
+void RegistrationReference::ClearWritten() {
+  // Only the 8 x 8-cell blocks of the table written since the last build (obstacle cells and
+  // searched cells, near walls), not the whole 128 KiB table; only the obstacle blocks in rows
+  // that hold any. Indices are those of the last build's window.
+  for (int by = 0; by < kMaxBlockRows; ++by) {
+    for (std::uint64_t bits = written_blocks_[by]; bits != 0; bits &= bits - 1) {
+      const int x0 = __builtin_ctzll(bits) << kBlockShift, y0 = by << kBlockShift;
+      const int x1 = x0 + 8 < w_ ? x0 + 8 : w_, y1 = y0 + 8 < h_ ? y0 + 8 : h_;
+      for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) nearest_[static_cast<std::size_t>(y * w_ + x)] = kNotSearched;
+      }
+    }
+    written_blocks_[by] = 0;
+    for (std::uint64_t bits = occupied_blocks_[by]; bits != 0; bits &= bits - 1) {
+      obstacle_blocks_[static_cast<std::size_t>(by * blocks_x_ + __builtin_ctzll(bits))] = 0;
+    }
+    occupied_blocks_[by] = 0;
+  }
 }
 
 std::uint16_t RegistrationReference::ObstacleAt(int x, int y) const {
@@ -44,6 +70,7 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
 }
 
 void RegistrationReference::BeginBuild(CellBox window, float resolution_m) {
+  ClearWritten();  // with the last build's window size, before it changes
   window_min_ = window.min;
   w_ = window.width() < max_w_ ? window.width() : max_w_;
   h_ = window.height() < max_h_ ? window.height() : max_h_;
@@ -53,12 +80,7 @@ void RegistrationReference::BeginBuild(CellBox window, float resolution_m) {
   inv_res_ = 1.0f / res_;
   origin_ = Point2{static_cast<float>(window.min.x) * res_, static_cast<float>(window.min.y) * res_};
   cell_count_ = line_count_ = 0;
-  const std::size_t n_table = static_cast<std::size_t>(w_ * h_);
-  for (std::size_t i = 0; i < n_table; ++i) nearest_[i] = kNoCell;
   blocks_x_ = (w_ + 7) >> kBlockShift;
-  const std::size_t n_blocks = static_cast<std::size_t>(blocks_x_ * ((h_ + 7) >> kBlockShift));
-  for (std::size_t i = 0; i < n_blocks; ++i) obstacle_blocks_[i] = 0;
-  for (std::uint64_t& row : occupied_blocks_) row = 0;
 }
 
 void RegistrationReference::AddGrid(const TiledGrid& grid, CellIndex offset, const ReferenceConfig& config,
@@ -103,6 +125,7 @@ void RegistrationReference::AddGrid(const TiledGrid& grid, CellIndex offset, con
           c.y = static_cast<std::int16_t>(y);
           c.weight = weight;
           entry = static_cast<std::uint16_t>(cell_count_++);
+          written_blocks_[y >> kBlockShift] |= std::uint64_t{1} << (x >> kBlockShift);
           obstacle_blocks_[static_cast<std::size_t>((y >> kBlockShift) * blocks_x_ + (x >> kBlockShift))] |=
               std::uint64_t{1} << (((y & 7) << 3) | (x & 7));
           occupied_blocks_[y >> kBlockShift] |= std::uint64_t{1} << (x >> kBlockShift);
@@ -134,8 +157,8 @@ Status RegistrationReference::FinishBuild(const ReferenceConfig& config, Referen
     l.cyy *= res_ * res_;
   }
 
-  // 3. The nearest-obstacle table: every other cell (kNoCell = kNotSearched) is searched on its
-  // first query (Search).
+  // 3. The nearest-obstacle table: every other cell (kNotSearched, as ClearWritten left it) is
+  // searched on its first query (Search).
   const float bound_cells = config.max_distance_m * inv_res_;
   bound2_ = static_cast<std::int32_t>(bound_cells * bound_cells);
   reach_ = 0;
@@ -193,6 +216,7 @@ std::uint16_t RegistrationReference::Search(int x, int y) const {
     }
   }
   nearest_[static_cast<std::size_t>(y * w_ + x)] = best == kNoCell ? kNoneNear : best;
+  written_blocks_[by] |= std::uint64_t{1} << (x >> kBlockShift);
   return best;
 }
 

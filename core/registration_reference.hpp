@@ -105,12 +105,16 @@ class RegistrationReference {
 
   // The nearest obstacle cell to window cell (x, y) within the bound; caches it in the table.
   std::uint16_t Search(int x, int y) const;
+  // Resets what the last build and its searches wrote: table entries, obstacle blocks.
+  void ClearWritten();
 
   Span<ObstacleCell> cells_;
   // A cache that Search fills, also through a const reference (queries are single-threaded).
   Span<std::uint16_t> nearest_;
   Span<std::uint64_t> obstacle_blocks_;
   std::uint64_t occupied_blocks_[kMaxBlockRows];  // bit bx of row by: block (bx, by) has an obstacle cell
+  // Bit bx of row by: table block (bx, by) holds entries other than kNotSearched (Search sets it).
+  mutable std::uint64_t written_blocks_[kMaxBlockRows];
   Span<std::uint16_t> scratch_;
   Span<LineFeature> lines_;
   Span<RefitSums> refit_;
@@ -125,9 +129,10 @@ class RegistrationReference {
   float res_ = 0.05f, inv_res_ = 20.0f;
 };
 
-// 256 x 256 window, 4096 cells, 512 lines: 128 KiB table + 8 KiB obstacle bits + 40 KiB
-// cells/scratch + 28 KiB lines, + 12 KiB of point-refit sums when kPointRefit (a reference built
-// from a grid alone, e.g. a regional map's, has no raw points to refit to and carries none).
+// 256 x 256 window, 4096 cells, 512 lines: 128 KiB table + 8 KiB obstacle bits + 1 KiB of
+// block-row masks + 40 KiB cells/scratch + 28 KiB lines, + 12 KiB of point-refit sums when
+// kPointRefit (a reference built from a grid alone, e.g. a regional map's, has no raw points to
+// refit to and carries none).
 template <int kW, int kH, int kCells, int kLines, bool kPointRefit = true>
 class RegistrationReferenceStorage : public RegistrationReference {
   static_assert(kCells < kNoCell - 1, "cell ids are 16-bit, two values are markers");

@@ -1,7 +1,8 @@
 #include "core/tiled_grid.hpp"
 
+#include <cstddef>
+
 #include "core/assert.hpp"
-#include "core/cell_line.hpp"
 
 namespace dpcr {
 TiledGrid::TiledGrid(TilePool* pool, Span<TileId> index, int tiles_x, int tiles_y)
@@ -101,115 +102,161 @@ bool TiledGrid::Reserve(CellIndex c, std::uint32_t stamp) {
 
 namespace {
 
-// ApplyDelta with the settle rule fixed at compile time (the hot loop below).
-template <bool kSettle>
-void ApplyDeltaTo(std::int16_t* cell, std::int32_t delta, std::int32_t lo, std::int32_t hi) {
+// Updates cell `i` of a tile (row-major, 32 cells a row), once per scan when kStamped: bit i & 31
+// of updated[i >> 5] marks it. A settled cell is tested first and left unmarked: nothing in this
+// scan can change it, so a later visit that finds it unmarked skips it all the same (on the
+// regional maps most visits end here).
+template <bool kStamped, bool kSettle>
+inline void UpdateCell(Tile* tile, std::ptrdiff_t i, std::int32_t delta, std::int32_t lo, std::int32_t hi) {
+  std::int16_t* cell = &tile->cells[i];
   const std::int32_t old = *cell;
   if (kSettle && (old == lo || old == hi)) return;
+  if (kStamped) {
+    const std::uint32_t bit = 1u << (i & 31), word = tile->updated[i >> 5];
+    if ((word & bit) != 0) return;
+    tile->updated[i >> 5] = word | bit;
+  }
   std::int32_t v = (old == kUnknownCell ? 0 : old) + delta;
   v = v < lo ? lo : v;
   v = v > hi ? hi : v;
   *cell = static_cast<std::int16_t>(v);
 }
 
-// Updates one cell (once per scan when kStamped: bit lx of updated[ly] marks it).
-template <bool kStamped, bool kSettle>
-void UpdateCell(Tile* tile, std::int32_t lx, std::int32_t ly, std::int32_t delta, std::int32_t lo, std::int32_t hi) {
-  if (kStamped) {
-    const std::uint32_t bit = 1u << lx, word = tile->updated[ly];
-    if ((word & bit) != 0) return;
-    tile->updated[ly] = word | bit;
-  }
-  ApplyDeltaTo<kSettle>(&tile->cells[(ly << 5) | lx], delta, lo, hi);
-}
-
-// Walks the segment's cells inside one tile from tile-local (lx, ly), at most `left` of them,
-// updating each; returns how many it walked. Every step moves along the major axis (kXMajor: x),
-// so the run ends after a known number of steps unless the minor axis leaves the tile first,
-// which is checked only when it moves. The walk's state lives in locals
-// so that the loop keeps it in registers. tile == nullptr (pool full): walk only.
-template <bool kXMajor, bool kStamped, bool kSettle>
-std::int32_t WalkRun(Tile* tile, BresenhamWalk* walk, std::int32_t* lx_io, std::int32_t* ly_io, std::int32_t left,
-                     std::int32_t delta, std::int32_t lo, std::int32_t hi) {
-  // BresenhamWalk::Step with e2 = 2 err: x moves when e2 > -dy (err -= dy), y when e2 < dx
-  // (err += dx); along the major axis the test always passes.
-  const std::int32_t dx = walk->dx, dy = walk->dy;
-  const std::int32_t major_s = kXMajor ? walk->sx : walk->sy, minor_s = kXMajor ? walk->sy : walk->sx;
-  std::int32_t err = walk->err;
-  std::int32_t major = kXMajor ? *lx_io : *ly_io, minor = kXMajor ? *ly_io : *lx_io;
-  const std::int32_t to_edge = major_s > 0 ? 32 - major : major + 1;
-  const std::int32_t n = left < to_edge ? left : to_edge;
-  std::int32_t i = 0;
-  while (i < n) {
-    if (tile != nullptr) {
-      UpdateCell<kStamped, kSettle>(tile, kXMajor ? major : minor, kXMajor ? minor : major, delta, lo, hi);
-    }
-    ++i;
-    const std::int32_t e2 = 2 * err;
-    err += kXMajor ? -dy : dx;
-    major += major_s;
-    if (kXMajor ? e2 < dx : e2 > -dy) {
-      err += kXMajor ? dx : -dy;
-      minor += minor_s;
-      if (static_cast<std::uint32_t>(minor) >= 32u) break;
-    }
-  }
-  walk->err = err;
-  *lx_io = kXMajor ? major : minor;
-  *ly_io = kXMajor ? minor : major;
-  return i;
-}
-
-template <bool kStamped, bool kSettle>
-std::int32_t WalkRun(Tile* tile, BresenhamWalk* walk, std::int32_t* lx, std::int32_t* ly, std::int32_t left,
-                     std::int32_t delta, std::int32_t lo, std::int32_t hi) {
-  return walk->dx >= walk->dy ? WalkRun<true, kStamped, kSettle>(tile, walk, lx, ly, left, delta, lo, hi)
-                              : WalkRun<false, kStamped, kSettle>(tile, walk, lx, ly, left, delta, lo, hi);
-}
-
 }  // namespace
 
-TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::int16_t delta, std::int16_t lo,
-                                                  std::int16_t hi, std::uint32_t stamp) {
+template <bool kXMajor, int kMajorS, bool kStamped, bool kSettle>
+inline void TiledGrid::WalkSegment(CellSegment s, std::int32_t delta, std::int32_t lo, std::int32_t hi,
+                                   std::uint32_t stamp, SegmentStats* st) {
   // TraceCells' Bresenham walk (same cells, same order), cut into runs of cells in one tile: the
   // tile lookup, allocation and stamp check happen once per run, and inside a run the walk moves
-  // tile-local coordinates (a row of "updated" bits is one word: bit lx of updated[ly]).
+  // the cell's index in the tile (+-1 along x, +-32 along y), which also names its "updated" bit.
+  // BresenhamWalk::Step always moves the major axis (x when kXMajor: dx >= dy) and moves the
+  // minor one when its error term says so. Here the error is kept as in the classic integer line:
+  // g = 2 * minor extent - major extent at the start (g = dx - 2 err when x is major, 2 err + dy
+  // when y is); the minor axis moves when g > 0 (then g -= 2 * major extent), and g += 2 * minor
+  // extent at every step. So a run is a counted loop to the tile edge along the major axis, and
+  // the minor axis is tested against the tile only when it moves.
   static_assert(kTileSide == 32, "one 32-bit word of updated bits per tile row");
-  SegmentStats st;
-  BresenhamWalk walk(a, b);
-  // Every Bresenham step moves one cell along the major axis: max(dx, dy) cells, b excluded.
-  std::int32_t left = walk.steps();
-  CellIndex c = a;
+  const CellIndex a = s.from, b = s.to;
+  const std::int32_t dx = b.x >= a.x ? b.x - a.x : a.x - b.x, dy = b.y >= a.y ? b.y - a.y : a.y - b.y;
+  const std::int32_t major_n = kXMajor ? dx : dy, minor_n = kXMajor ? dy : dx;
+  // The major axis's direction (kMajorS) is a template argument: one register less in the run.
+  const std::int32_t major_s = kMajorS;
+  const std::int32_t minor_s = kXMajor ? (b.y >= a.y ? 1 : -1) : (b.x >= a.x ? 1 : -1);
+  std::int32_t g = 2 * minor_n - major_n;
+  std::int32_t major = kXMajor ? a.x : a.y, minor = kXMajor ? a.y : a.x;  // global cells
+  std::int32_t left = major_n;  // every step moves the major axis; b excluded
+  const std::int32_t two_major = 2 * major_n, two_minor = 2 * minor_n;
+  // A step's move of the index in a tile: 1 along x, 32 along y.
+  const std::int32_t major_step = kXMajor ? major_s : 32 * major_s, minor_step = kXMajor ? 32 * minor_s : minor_s;
   while (left > 0) {
-    const std::int32_t tx = (c.x >> 5) - origin_tile_.x;
-    const std::int32_t ty = (c.y >> 5) - origin_tile_.y;
+    const std::int32_t x = kXMajor ? major : minor, y = kXMajor ? minor : major;
+    const std::int32_t tx = (x >> 5) - origin_tile_.x, ty = (y >> 5) - origin_tile_.y;
     if (static_cast<std::uint32_t>(tx) >= static_cast<std::uint32_t>(tiles_x_) ||
         static_cast<std::uint32_t>(ty) >= static_cast<std::uint32_t>(tiles_y_)) {
-      ++st.out_of_box;  // the box is convex: the ray never comes back
-      break;
+      ++st->out_of_box;  // the box is convex: the ray never comes back
+      return;
     }
     Tile* tile = TileForWrite(ty * tiles_x_ + tx);
-    if (tile != nullptr && stamp != 0 && tile->stamp != stamp) {
+    if (kStamped && tile != nullptr && tile->stamp != stamp) {
       for (std::uint32_t& word : tile->updated) word = 0;
       tile->stamp = stamp;
     }
-    const std::int32_t base_x = c.x - (c.x & 31), base_y = c.y - (c.y & 31);
-    std::int32_t lx = c.x & 31, ly = c.y & 31;
-    std::int32_t run = 0;
-    if (stamp != 0) {
-      run = settle_at_bounds_ ? WalkRun<true, true>(tile, &walk, &lx, &ly, left, delta, lo, hi)
-                              : WalkRun<true, false>(tile, &walk, &lx, &ly, left, delta, lo, hi);
-    } else {
-      run = settle_at_bounds_ ? WalkRun<false, true>(tile, &walk, &lx, &ly, left, delta, lo, hi)
-                              : WalkRun<false, false>(tile, &walk, &lx, &ly, left, delta, lo, hi);
-    }
-    left -= run;
+    // The run: tile-local, `cell` is the index in the tile; it ends at the tile edge along the
+    // major axis (n >= 1 steps) or when the minor axis has used up its `room` in the tile.
+    const std::int32_t major_base = major & ~31, minor_base = minor & ~31;
+    const std::int32_t start = major & 31, lminor = minor & 31;
+    const std::int32_t room0 = minor_s > 0 ? 31 - lminor : lminor;
+    std::int32_t room = room0;
+    std::ptrdiff_t cell = kXMajor ? (lminor << 5) | start : (start << 5) | lminor;
+    const std::int32_t to_edge = major_s > 0 ? 32 - start : start + 1;
+    const std::int32_t n = left < to_edge ? left : to_edge;
+    std::int32_t k = n;
+    do {
+      if (tile != nullptr) UpdateCell<kStamped, kSettle>(tile, cell, delta, lo, hi);
+      cell += major_step;
+      if (g > 0) {
+        g += two_minor - two_major;
+        cell += minor_step;
+        if (--room < 0) {
+          --k;
+          break;
+        }
+      } else {
+        g += two_minor;
+      }
+    } while (--k != 0);
+    const std::int32_t walked = n - k;
+    const std::int32_t lmajor = start + walked * major_s;
+    left -= walked;
     if (tile != nullptr) {
-      st.applied += run;
+      st->applied += walked;
     } else {
-      st.dropped_pool_full += run;  // nothing is freed while a scan is inserted: no retry
+      st->dropped_pool_full += walked;  // nothing is freed while a scan is inserted: no retry
     }
-    c = CellIndex{base_x + lx, base_y + ly};
+    major = major_base + lmajor;
+    minor = minor_base + lminor + (room0 - room) * minor_s;
+  }
+}
+
+template <bool kStamped, bool kSettle>
+TiledGrid::SegmentStats TiledGrid::WalkSegments(Span<const CellSegment> segments, std::int32_t delta, std::int32_t lo,
+                                                std::int32_t hi, std::uint32_t stamp) {
+  SegmentStats st;
+  for (const CellSegment& s : segments) {
+    const std::int32_t dx = s.to.x >= s.from.x ? s.to.x - s.from.x : s.from.x - s.to.x;
+    const std::int32_t dy = s.to.y >= s.from.y ? s.to.y - s.from.y : s.from.y - s.to.y;
+    if (dx >= dy) {
+      if (s.to.x >= s.from.x) {
+        WalkSegment<true, 1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+      } else {
+        WalkSegment<true, -1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+      }
+    } else if (s.to.y >= s.from.y) {
+      WalkSegment<false, 1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+    } else {
+      WalkSegment<false, -1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+    }
+  }
+  return st;
+}
+
+TiledGrid::SegmentStats TiledGrid::UpdateSegments(Span<const CellSegment> segments, std::int16_t delta, std::int16_t lo,
+                                                   std::int16_t hi, std::uint32_t stamp) {
+  // The stamp and settle rules are fixed for the batch: the walk is chosen once.
+  if (stamp != 0) {
+    return settle_at_bounds_ ? WalkSegments<true, true>(segments, delta, lo, hi, stamp)
+                             : WalkSegments<true, false>(segments, delta, lo, hi, stamp);
+  }
+  return settle_at_bounds_ ? WalkSegments<false, true>(segments, delta, lo, hi, stamp)
+                           : WalkSegments<false, false>(segments, delta, lo, hi, stamp);
+}
+
+TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::int16_t delta, std::int16_t lo,
+                                                  std::int16_t hi, std::uint32_t stamp) {
+  const CellSegment s{a, b};
+  return UpdateSegments(Span<const CellSegment>(&s, 1), delta, lo, hi, stamp);
+}
+
+TiledGrid::SegmentStats TiledGrid::UpdateCells(Span<const CellIndex> cells, std::int16_t delta, std::int16_t lo,
+                                               std::int16_t hi, std::uint32_t stamp) {
+  // Update() per cell, with its lookups inlined and repeats not counted.
+  DPCR_ASSERT(stamp != 0);
+  SegmentStats st;
+  for (const CellIndex c : cells) {
+    int offset = 0;
+    const int slot = SlotOf(c, &offset);
+    if (slot < 0) {
+      ++st.out_of_box;
+      continue;
+    }
+    Tile* tile = TileForWrite(slot);
+    if (tile == nullptr) {
+      ++st.dropped_pool_full;
+    } else if (MarkOnce(tile, offset, stamp)) {
+      ApplyDelta(&tile->cells[offset], delta, lo, hi, settle_at_bounds_);
+      ++st.applied;
+    }
   }
   return st;
 }

@@ -21,6 +21,12 @@ struct CellBox {
   std::int32_t height() const { return max.y - min.y; }
 };
 
+// A Bresenham segment of cells from `from` towards `to` (`to` excluded).
+struct CellSegment {
+  CellIndex from;
+  CellIndex to;
+};
+
 class TiledGrid {
  public:
   // `pool` may be attached later (arrays of grids are built before their pool is known).
@@ -54,8 +60,8 @@ class TiledGrid {
   // cannot be allocated (the update is dropped), kOk otherwise (also when skipped as a repeat).
   Status Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::int16_t hi, std::uint32_t stamp);
 
-  // What UpdateSegment did: updates applied (repeats within the scan included), whether the
-  // segment left the box (tracing stops there), updates lost to a full pool.
+  // What UpdateSegment(s) did: updates applied (repeats within the scan included), whether the
+  // segment left the box (tracing stops there), updates lost to a full pool. Also UpdateCells'.
   struct SegmentStats {
     int applied = 0;
     int out_of_box = 0;
@@ -66,13 +72,22 @@ class TiledGrid {
   // as the per-cell calls; the tile is looked up once per tile crossed, not once per cell.
   SegmentStats UpdateSegment(CellIndex a, CellIndex b, std::int16_t delta, std::int16_t lo, std::int16_t hi,
                              std::uint32_t stamp);
+  // UpdateSegment for each segment in turn, the stats summed. A scan's rays go in batches: the
+  // walk (stamp rule, settle rule) is chosen once per batch, not once per ray.
+  SegmentStats UpdateSegments(Span<const CellSegment> segments, std::int16_t delta, std::int16_t lo, std::int16_t hi,
+                              std::uint32_t stamp);
 
   // True when the cell's tile has been allocated (the cell may still be unknown).
   bool HasTile(CellIndex c) const;
 
   // Marks a cell as updated in scan `stamp` without changing it; false if it already was
-  // (or cannot be: out of box, pool full). Used to reserve hit cells before misses are cast.
+  // (or cannot be: out of box, pool full).
   bool Reserve(CellIndex c, std::uint32_t stamp);
+  // Update(c, delta, lo, hi, stamp) for each cell (stamp != 0), the stats summed: `applied`
+  // counts the cells updated (not the repeats), the others the cells out of the box or lost to a
+  // full pool. InsertRays applies a scan's hits so, before its misses.
+  SegmentStats UpdateCells(Span<const CellIndex> cells, std::int16_t delta, std::int16_t lo, std::int16_t hi,
+                           std::uint32_t stamp);
 
   int tiles_x() const { return tiles_x_; }
   int tiles_y() const { return tiles_y_; }
@@ -86,6 +101,15 @@ class TiledGrid {
   // The tile slot of a cell, -1 outside the box; `offset` gets the cell's place in its tile.
   int SlotOf(CellIndex c, int* offset) const;
   Tile* TileForWrite(int slot);
+  // UpdateSegments with the stamp and settle rules fixed at compile time, and one segment with
+  // its major axis (x when kXMajor) and that axis's direction (kMajorS, +-1) fixed too;
+  // tiled_grid.cpp.
+  template <bool kStamped, bool kSettle>
+  SegmentStats WalkSegments(Span<const CellSegment> segments, std::int32_t delta, std::int32_t lo, std::int32_t hi,
+                            std::uint32_t stamp);
+  template <bool kXMajor, int kMajorS, bool kStamped, bool kSettle>
+  void WalkSegment(CellSegment s, std::int32_t delta, std::int32_t lo, std::int32_t hi, std::uint32_t stamp,
+                   SegmentStats* st);
 
   TilePool* pool_;
   Span<TileId> index_;

@@ -1,6 +1,7 @@
 #include "host_sim/carmen/carmen_reader.hpp"
 
 #include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <system_error>
 
@@ -10,6 +11,32 @@ namespace {
 constexpr float kDegToRad = dpcr::kPi / 180.0f;
 
 bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
+
+// Clinger's fast path: a plain decimal of at most 15 digits ("1.23", "-0.004", "17") is an exact
+// integer over an exact power of ten, and one IEEE division rounds the quotient correctly: the
+// double strtod and from_chars give, at a fraction of their cost (parsing was ~10 % of a replay).
+bool ParseShortDecimal(const char* p, const char* last, double* value) {
+  const bool negative = p < last && *p == '-';
+  if (p < last && (*p == '-' || *p == '+')) ++p;
+  static constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+  std::uint64_t mantissa = 0;
+  int digits = 0, decimals = -1;  // -1: no point yet
+  for (; p < last; ++p) {
+    if (*p >= '0' && *p <= '9') {
+      mantissa = mantissa * 10u + static_cast<std::uint64_t>(*p - '0');
+      ++digits;
+      if (decimals >= 0) ++decimals;
+    } else if (*p == '.' && decimals < 0) {
+      decimals = 0;
+    } else {
+      return false;
+    }
+  }
+  if (digits == 0 || digits > 15) return false;
+  const double v = static_cast<double>(mantissa) / kPow10[decimals < 0 ? 0 : decimals];
+  *value = negative ? -v : v;
+  return true;
+}
 
 // The whitespace-separated words of one line, as views into it (no copies), parsed on demand.
 class Tokens {
@@ -34,14 +61,8 @@ class Tokens {
   // The whole word as a finite decimal number (correctly rounded, as strtod).
   double Number(const char* what) {
     const std::string_view w = Word(what);
-    const char* first = w.data();
-    const char* const last = first + w.size();
-    if (first < last && *first == '+') ++first;  // strtod's optional sign, which from_chars lacks
     double v = 0.0;
-    const std::from_chars_result r = std::from_chars(first, last, v);
-    if (r.ec != std::errc() || r.ptr != last || !std::isfinite(v)) {
-      throw CarmenError(line_, std::string("bad ") + what + " '" + std::string(w) + "'");
-    }
+    if (!ParseNumber(w, &v)) throw CarmenError(line_, std::string("bad ") + what + " '" + std::string(w) + "'");
     return v;
   }
   float Float(const char* what) { return static_cast<float>(Number(what)); }
@@ -208,6 +229,18 @@ bool CarmenReader::Next(Record* out) {
   }
   if (in_.bad()) throw CarmenError(counters_.lines, "read error");
   return false;
+}
+
+bool ParseNumber(std::string_view text, double* value) {
+  const char* first = text.data();
+  const char* const last = first + text.size();
+  if (ParseShortDecimal(first, last, value)) return true;
+  if (first < last && *first == '+') ++first;  // strtod's optional sign, which from_chars lacks
+  double v = 0.0;
+  const std::from_chars_result r = std::from_chars(first, last, v);
+  if (r.ec != std::errc() || r.ptr != last || !std::isfinite(v)) return false;
+  *value = v;
+  return true;
 }
 
 }  // namespace dpcr::carmen

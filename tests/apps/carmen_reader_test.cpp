@@ -1,6 +1,9 @@
 // CARMEN parser: good lines of each kind, the counters, and malformed lines named by number.
 #include <catch2/catch.hpp>
 
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <sstream>
 
 #include "host_sim/carmen/carmen_reader.hpp"
@@ -82,5 +85,41 @@ TEST_CASE("Malformed lines are errors that name the line and the reason") {
       REQUIRE(e.line() == 2);
       REQUIRE(std::string(e.what()).rfind("line 2: ", 0) == 0);
     }
+  }
+}
+
+TEST_CASE("Numbers parse to the double strtod gives (the short-decimal fast path included)") {
+  const char* const words[] = {"0", "-0", "+0", "0.0", "-0.000", "1", "1.", ".5", "-.5", "+2.25", "17", "-17.5",
+                               "0.1", "0.3", "2.675", "81.9100", "999999999999999", "0.000000000000001",
+                               "9007199254740993", "1234567890123456.7", "1e3", "-2.5E-3", "3.4028235e38",
+                               "0.30000000000000004"};
+  for (const char* w : words) {
+    double v = 42.0;
+    REQUIRE(dpcr::carmen::ParseNumber(w, &v));
+    const double expected = std::strtod(w, nullptr);
+    REQUIRE(std::memcmp(&v, &expected, sizeof v) == 0);  // bit for bit (signed zeros too)
+  }
+  for (const char* bad : {"", "-", "+", ".", "1.2.3", "1,5", "abc", "1e", "--1", "inf", "nan", "1e999"}) {
+    double v = 0.0;
+    REQUIRE_FALSE(dpcr::carmen::ParseNumber(bad, &v));
+  }
+  // Random plain decimals of up to 15 digits, as lasers and odometry write them.
+  std::uint64_t seed = 99;
+  char text[40];
+  for (int i = 0; i < 200000; ++i) {
+    seed = seed * 6364136223846793005u + 1442695040888963407u;
+    const int digits = 1 + static_cast<int>((seed >> 33) % 15), point = static_cast<int>((seed >> 40) % static_cast<std::uint64_t>(digits + 1));
+    std::uint64_t m = seed >> 11;
+    int n = 0;
+    if ((seed >> 50) & 1u) text[n++] = '-';
+    for (int d = 0; d < digits; ++d, m /= 10) {
+      if (d == point) text[n++] = '.';
+      text[n++] = static_cast<char>('0' + m % 10);
+    }
+    text[n] = '\0';
+    double v = 0.0;
+    REQUIRE(dpcr::carmen::ParseNumber(text, &v));
+    const double expected = std::strtod(text, nullptr);
+    REQUIRE(std::memcmp(&v, &expected, sizeof v) == 0);
   }
 }

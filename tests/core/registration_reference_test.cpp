@@ -73,6 +73,30 @@ TEST_CASE("The nearest-obstacle table equals a brute-force search (random walls,
   }
 }
 
+TEST_CASE("A rebuilt reference answers as a fresh one (a build clears what the last one and its searches wrote)") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> pos(0.0f, 12.8f);
+  auto reused = std::make_unique<dpcr_test::Reference>();
+  for (int trial = 0; trial < 6; ++trial) {
+    GridFixture f;
+    for (int i = 0; i < 3 + trial * 2; ++i) f.Draw(Segment{{pos(rng), pos(rng)}, {pos(rng), pos(rng)}});
+    for (int i = 0; i < 30; ++i) f.Mark(Point2{pos(rng), pos(rng)});
+    // Windows of different sizes in turn: the last build's indices differ from this one's.
+    const dpcr::CellBox window = trial % 2 == 0 ? f.grid->box()
+                                                : dpcr::CellBox{dpcr::CellIndex{20, 10}, dpcr::CellIndex{220, 190}};
+    dpcr::ReferenceConfig config;
+    config.max_distance_m = trial % 3 == 0 ? 1.0f : 0.6f;
+    (void)reused->Build(*f.grid, window, config, nullptr);
+    (void)f.ref->Build(*f.grid, window, config, nullptr);
+    for (int y = -2; y < 258; ++y) {
+      for (int x = -2; x < 258; ++x) {
+        const Point2 p{(static_cast<float>(x) + 0.5f) * 0.05f, (static_cast<float>(y) + 0.5f) * 0.05f};
+        REQUIRE(reused->Nearest(p) == f.ref->Nearest(p));
+      }
+    }
+  }
+}
+
 TEST_CASE("A reference over two grids shifts the second one's cells and merges shared cells") {
   GridFixture a, b;
   // A wall at x = 1 m in both frames, one hit per cell in a's (Draw samples each cell 4 times).

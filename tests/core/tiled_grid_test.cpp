@@ -1,6 +1,7 @@
 // Tiled grid: lazy tiles, bounds, clamping, once-per-scan rule, pool exhaustion.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <memory>
 
 #include "core/cell_line.hpp"
@@ -13,6 +14,21 @@ TEST_CASE("CellOf floors negative coordinates") {
   REQUIRE(dpcr::CellOf(0.01f, 0.01f, 0.05f) == CellIndex{0, 0});
   REQUIRE(dpcr::CellOf(-0.01f, 0.07f, 0.05f) == CellIndex{-1, 1});
   REQUIRE(dpcr::CellCentreX(CellIndex{-1, 0}, 0.05f) == Approx(-0.025f));
+}
+
+TEST_CASE("FloorToInt is std::floor for every float of the grid's range") {
+  // Whole numbers, halves, the floats either side of them, and a sweep of quotients like CellOf's.
+  const float samples[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -0.5f, 1e-7f, -1e-7f, 123456.0f, -123456.0f,
+                           16777216.0f, -16777216.0f, 1e9f, -1e9f};
+  for (const float v : samples) {
+    for (const float w : {std::nextafter(v, -2e9f), v, std::nextafter(v, 2e9f)}) {
+      REQUIRE(dpcr::FloorToInt(w) == static_cast<std::int32_t>(std::floor(w)));
+    }
+  }
+  for (int i = -200000; i <= 200000; ++i) {
+    const float v = static_cast<float>(i) * 0.0137f / 0.05f;
+    REQUIRE(dpcr::FloorToInt(v) == static_cast<std::int32_t>(std::floor(v)));
+  }
 }
 
 TEST_CASE("Tiles are allocated on first write only, and released on reset") {
@@ -88,13 +104,17 @@ TEST_CASE("A full tile pool drops the update and says so") {
 }
 
 TEST_CASE("UpdateSegment equals per-cell Update along TraceCells (random segments, box exits, full pool)") {
-  // Oracle: the tile-run walk must touch the same cells in the same order as TraceCells + Update.
+  // Oracle: the tile-run walk must touch the same cells in the same order as TraceCells + Update,
+  // with and without settled cells.
+  const bool settle = GENERATE(false, true);
   auto pool_a = std::make_unique<dpcr::TilePoolStorage<12>>();
   auto pool_b = std::make_unique<dpcr::TilePoolStorage<12>>();
   dpcr::TiledGridStorage<4, 4> fast(pool_a.get());
   dpcr::TiledGridStorage<4, 4> slow(pool_b.get());
   fast.Reset(CellIndex{-2, -2});
   slow.Reset(CellIndex{-2, -2});
+  fast.set_settle_at_bounds(settle);
+  slow.set_settle_at_bounds(settle);
   std::uint32_t seed = 12345;
   int dropped = 0, exits = 0;
   const auto next = [&seed](int lo, int hi) {
@@ -130,7 +150,52 @@ TEST_CASE("UpdateSegment equals per-cell Update along TraceCells (random segment
   REQUIRE(dropped > 0);  // both the full pool and box exits were exercised
   REQUIRE(exits > 0);
   REQUIRE(pool_a->used() == pool_b->used());
+  int at_bounds = 0;
   for (int y = -64; y < 64; ++y) {
-    for (int x = -64; x < 64; ++x) REQUIRE(fast.Get(CellIndex{x, y}) == slow.Get(CellIndex{x, y}));
+    for (int x = -64; x < 64; ++x) {
+      REQUIRE(fast.Get(CellIndex{x, y}) == slow.Get(CellIndex{x, y}));
+      at_bounds += (fast.Get(CellIndex{x, y}) == 3000 || fast.Get(CellIndex{x, y}) == -3000) ? 1 : 0;
+    }
+  }
+  REQUIRE(at_bounds > 0);  // settled cells were exercised
+}
+
+TEST_CASE("UpdateSegments equals UpdateSegment one segment at a time") {
+  const bool settle = GENERATE(false, true);
+  auto pool_a = std::make_unique<dpcr::TilePoolStorage<12>>();
+  auto pool_b = std::make_unique<dpcr::TilePoolStorage<12>>();
+  dpcr::TiledGridStorage<4, 4> batched(pool_a.get());
+  dpcr::TiledGridStorage<4, 4> single(pool_b.get());
+  batched.Reset(CellIndex{-2, -2});
+  single.Reset(CellIndex{-2, -2});
+  batched.set_settle_at_bounds(settle);
+  single.set_settle_at_bounds(settle);
+  std::uint32_t seed = 777;
+  const auto next = [&seed](int lo, int hi) {
+    seed = seed * 1664525u + 1013904223u;
+    return lo + static_cast<int>((seed >> 8) % static_cast<std::uint32_t>(hi - lo + 1));
+  };
+  dpcr::CellSegment segments[40];
+  for (std::uint32_t scan = 1; scan <= 300; ++scan) {
+    const std::size_t n = static_cast<std::size_t>(next(0, 40));
+    for (std::size_t i = 0; i < n; ++i) {
+      segments[i] = dpcr::CellSegment{CellIndex{next(-64, 63), next(-64, 63)}, CellIndex{next(-90, 90), next(-90, 90)}};
+    }
+    const std::int16_t delta = static_cast<std::int16_t>(next(-400, 400));
+    const dpcr::TiledGrid::SegmentStats b =
+        batched.UpdateSegments(dpcr::Span<const dpcr::CellSegment>(segments, n), delta, -3000, 3000, scan);
+    dpcr::TiledGrid::SegmentStats o;
+    for (std::size_t i = 0; i < n; ++i) {
+      const dpcr::TiledGrid::SegmentStats s = single.UpdateSegment(segments[i].from, segments[i].to, delta, -3000, 3000, scan);
+      o.applied += s.applied;
+      o.out_of_box += s.out_of_box;
+      o.dropped_pool_full += s.dropped_pool_full;
+    }
+    REQUIRE(b.applied == o.applied);
+    REQUIRE(b.out_of_box == o.out_of_box);
+    REQUIRE(b.dropped_pool_full == o.dropped_pool_full);
+  }
+  for (int y = -64; y < 64; ++y) {
+    for (int x = -64; x < 64; ++x) REQUIRE(batched.Get(CellIndex{x, y}) == single.Get(CellIndex{x, y}));
   }
 }
