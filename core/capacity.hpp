@@ -43,7 +43,7 @@ struct VacuumProfile {
   static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 320'000;
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 65'000;
   static constexpr std::uint64_t kBudgetInsertionInstr = 1'070'000;
-  static constexpr std::uint64_t kBudgetLineExtractionInstr = 220'000;
+  static constexpr std::uint64_t kBudgetLineExtractionInstr = 172'000;
 };
 
 // The public benchmark logs (intel.clf: a 30 m x 30 m lab, ~900 m² with long corridors):
@@ -69,7 +69,7 @@ struct BuildingProfile {
   static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 165'000;
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 22'000;
   static constexpr std::uint64_t kBudgetInsertionInstr = 330'000;
-  static constexpr std::uint64_t kBudgetLineExtractionInstr = 96'000;
+  static constexpr std::uint64_t kBudgetLineExtractionInstr = 73'000;
 };
 
 // A small profile for tests: full pools are easy to reach.
@@ -94,7 +94,7 @@ struct TinyProfile {
   static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 140'000;
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 40'000;  // 32 K: the hit margin gives more target cells
   static constexpr std::uint64_t kBudgetInsertionInstr = 445'000;
-  static constexpr std::uint64_t kBudgetLineExtractionInstr = 75'000;
+  static constexpr std::uint64_t kBudgetLineExtractionInstr = 54'000;
 };
 
 }  // namespace dpcr

@@ -153,12 +153,23 @@ LineFeature Merged(const LineFeature& p, const LineFeature& q) {
 void ComputeLocalNormals(Span<ObstacleCell> cells, const std::uint16_t* cell_at, int w, int h) {
   for (ObstacleCell& c : cells) {
     int sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0, n = 0;
-    for (int dy = -2; dy <= 2; ++dy) {
-      for (int dx = -2; dx <= 2; ++dx) {
-        const int x = c.x + dx, y = c.y + dy;
-        if (x < 0 || y < 0 || x >= w || y >= h || cell_at[y * w + x] == kNoCell) continue;
-        sx += dx, sy += dy, sxx += dx * dx, sxy += dx * dy, syy += dy * dy;
-        ++n;
+    const auto add = [&](int dx, int dy) { sx += dx, sy += dy, sxx += dx * dx, sxy += dx * dy, syy += dy * dy, ++n; };
+    if (c.x >= 2 && c.y >= 2 && c.x < w - 2 && c.y < h - 2) {
+      // Most cells: the neighbourhood is inside the table, no bounds checks (integer sums, so
+      // the result does not depend on the path taken).
+      const std::uint16_t* centre = cell_at + c.y * w + c.x;
+      for (int dy = -2; dy <= 2; ++dy) {
+        for (int dx = -2; dx <= 2; ++dx) {
+          if (centre[dy * w + dx] != kNoCell) add(dx, dy);
+        }
+      }
+    } else {
+      for (int dy = -2; dy <= 2; ++dy) {
+        for (int dx = -2; dx <= 2; ++dx) {
+          const int x = c.x + dx, y = c.y + dy;
+          if (x < 0 || y < 0 || x >= w || y >= h || cell_at[y * w + x] == kNoCell) continue;
+          add(dx, dy);
+        }
       }
     }
     c.nx = c.ny = 0;
@@ -188,6 +199,7 @@ int ExtractLines(Span<ObstacleCell> cells, const std::uint16_t* cell_at, int w, 
   constexpr std::uint16_t kVisited = kNoLine - 1;
   for (ObstacleCell& c : cells) c.line = kNoLine;
 
+  const int link = config.link_radius_cells;
   int count = 0;
   std::uint32_t end = 0;
   for (std::uint32_t seed = 0; seed < cells.size(); ++seed) {
@@ -198,11 +210,13 @@ int ExtractLines(Span<ObstacleCell> cells, const std::uint16_t* cell_at, int w, 
     cells[seed].line = kVisited;
     for (std::uint32_t q = start; q < end; ++q) {
       const ObstacleCell c = cells[perm[q]];
-      for (int dy = -config.link_radius_cells; dy <= config.link_radius_cells; ++dy) {
-        for (int dx = -config.link_radius_cells; dx <= config.link_radius_cells; ++dx) {
-          const int x = c.x + dx, y = c.y + dy;
-          if (x < 0 || y < 0 || x >= w || y >= h) continue;
-          const std::uint16_t k = cell_at[y * w + x];
+      // Neighbours clipped to the table (rows, then columns: the visiting order is the queue's).
+      const int x0 = c.x - link < 0 ? 0 : c.x - link, x1 = c.x + link >= w ? w - 1 : c.x + link;
+      const int y0 = c.y - link < 0 ? 0 : c.y - link, y1 = c.y + link >= h ? h - 1 : c.y + link;
+      for (int y = y0; y <= y1; ++y) {
+        const std::uint16_t* row = cell_at + y * w;
+        for (int x = x0; x <= x1; ++x) {
+          const std::uint16_t k = row[x];
           if (k == kNoCell || cells[k].line != kNoLine) continue;
           cells[k].line = kVisited;
           perm[end++] = k;

@@ -95,19 +95,21 @@ void RegistrationReference::AddGrid(const TiledGrid& grid, CellIndex offset, con
       const int x0 = box.min.x + offset.x + tx * kTileSide - window_min_.x;
       const int y0 = box.min.y + offset.y + ty * kTileSide - window_min_.y;
       if (x0 >= w_ || y0 >= h_ || x0 + kTileSide <= 0 || y0 + kTileSide <= 0) continue;
+      const int lx0 = x0 < 0 ? -x0 : 0, lx1 = x0 + kTileSide > w_ ? w_ - x0 : kTileSide;  // columns inside the window
       for (int ly = 0; ly < kTileSide; ++ly) {
         const int y = y0 + ly;
         if (y < 0 || y >= h_) continue;
-        // Most rows hold no obstacle cell: a branch-free (vectorised) pass says so. kUnknownCell is
-        // below any threshold.
+        // Most rows hold no obstacle cell: a branch-free (vectorised) pass says so: the row's
+        // maximum (a max reduction is a few SIMD instructions, unlike an or of comparisons).
+        // kUnknownCell is below any threshold.
         const std::int16_t* row = values + ly * kTileSide;
-        bool any = false;
-        for (int lx = 0; lx < kTileSide; ++lx) any |= row[lx] > config.obstacle_threshold;
-        if (!any) continue;
-        for (int lx = 0; lx < kTileSide; ++lx) {
+        std::int16_t row_max = row[0];
+        for (int lx = 1; lx < kTileSide; ++lx) row_max = row[lx] > row_max ? row[lx] : row_max;
+        if (row_max <= config.obstacle_threshold) continue;
+        for (int lx = lx0; lx < lx1; ++lx) {
           const int x = x0 + lx;
-          const std::int16_t v = values[ly * kTileSide + lx];
-          if (x < 0 || x >= w_ || v == kUnknownCell || v <= config.obstacle_threshold) continue;
+          const std::int16_t v = row[lx];
+          if (v <= config.obstacle_threshold) continue;  // kUnknownCell included
           // Q10 log-odds / 64: up to 511 for an unclamped submap sum, 56 at the regional clamp.
           const std::uint16_t weight = config.weight_by_evidence ? static_cast<std::uint16_t>(1 + (v >> 6)) : 1;
           std::uint16_t& entry = nearest_[static_cast<std::size_t>(y * w_ + x)];
