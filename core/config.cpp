@@ -13,7 +13,7 @@ Status Validate(const MapperConfig& c) {
                         c.lidar.no_return_free_m >= 0.0f;
   const FrontEndConfig& f = c.front_end;
   // Regions tile one cell lattice, so neighbouring regional maps are a whole number of cells apart
-  // (FrontEnd::SecondRegistration merges them by shifting cells).
+  // (FrontEnd::BuildRegionReference merges two of them by shifting cells).
   const float cells_per_region = f.region_width_m / c.grid.resolution_m;
   const bool lattice_ok = std::fabs(cells_per_region - std::round(cells_per_region)) < 1e-3f;
   const bool front_ok = lattice_ok && f.submap_scans > 0 && f.submap_line_period > 0 && f.region_line_period > 0 &&

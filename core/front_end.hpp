@@ -2,8 +2,10 @@
 // storage that Mapper<Profile> owns:
 //   1 predict the pose from wheel odometry and de-skew the scan;
 //   2 first registration: scan -> submap (improved PLICP), lines re-extracted every K1 scans;
-//   3 every Ks scans and on entering a region: second registration, submap -> regional map,
-//     lines re-extracted every K2 scans; the correction moves the submap (and the robot with it);
+//   3 every Ks scans and on entering a region: second registration, submap -> regional map
+//     (here: the current one and the one the robot came from, in one reference; the paper uses
+//     the current one), lines re-extracted every K2 scans; the correction moves the submap (and
+//     the robot with it);
 //   4 insert the scan into the submap (ring of N) and once into the current regional map.
 // Frames: the robot pose lives in the submap frame; submap_pose_ places that frame in the world;
 // each regional map's cells are in its anchor frame.

@@ -52,7 +52,7 @@ class RegistrationReference {
   Status Build(const TiledGrid& grid, CellBox window, const ReferenceConfig& config, ReferenceBuildStats* stats);
 
   // The same in three steps, for one reference over several grids on one cell lattice (the
-  // regional maps of neighbouring regions, FrontEnd::SecondRegistration): cells of `grid` are
+  // regional maps of neighbouring regions, FrontEnd::BuildRegionReference): cells of `grid` are
   // shifted by `offset` cells into the window's frame; a cell that is an obstacle in two grids
   // is one cell with the larger weight. `stats` (not null) accumulates over the steps.
   void BeginBuild(CellBox window, float resolution_m);
