@@ -10,6 +10,34 @@
 using dpcr::CellIndex;
 using dpcr::Status;
 
+namespace {
+
+// Two small grids on pools of 12 tiles (a full pool is easy to reach), for walks compared against
+// an oracle walk.
+struct TwinGrids {
+  std::unique_ptr<dpcr::TilePoolStorage<12>> pool_a = std::make_unique<dpcr::TilePoolStorage<12>>();
+  std::unique_ptr<dpcr::TilePoolStorage<12>> pool_b = std::make_unique<dpcr::TilePoolStorage<12>>();
+  dpcr::TiledGridStorage<4, 4> a{pool_a.get()};
+  dpcr::TiledGridStorage<4, 4> b{pool_b.get()};
+  explicit TwinGrids(bool settle) {
+    for (dpcr::TiledGrid* g : {static_cast<dpcr::TiledGrid*>(&a), static_cast<dpcr::TiledGrid*>(&b)}) {
+      g->Reset(CellIndex{-2, -2});
+      g->set_settle_at_bounds(settle);
+    }
+  }
+};
+
+// A repeatable integer in [lo, hi] (an LCG: the same sequence on every platform).
+struct Lcg {
+  std::uint32_t seed;
+  int operator()(int lo, int hi) {
+    seed = seed * 1664525u + 1013904223u;
+    return lo + static_cast<int>((seed >> 8) % static_cast<std::uint32_t>(hi - lo + 1));
+  }
+};
+
+}  // namespace
+
 TEST_CASE("CellOf floors negative coordinates") {
   REQUIRE(dpcr::CellOf(0.01f, 0.01f, 0.05f) == CellIndex{0, 0});
   REQUIRE(dpcr::CellOf(-0.01f, 0.07f, 0.05f) == CellIndex{-1, 1});
@@ -106,21 +134,11 @@ TEST_CASE("A full tile pool drops the update and says so") {
 TEST_CASE("UpdateSegment equals per-cell Update along TraceCells (random segments, box exits, full pool)") {
   // Oracle: the tile-run walk must touch the same cells in the same order as TraceCells + Update,
   // with and without settled cells.
-  const bool settle = GENERATE(false, true);
-  auto pool_a = std::make_unique<dpcr::TilePoolStorage<12>>();
-  auto pool_b = std::make_unique<dpcr::TilePoolStorage<12>>();
-  dpcr::TiledGridStorage<4, 4> fast(pool_a.get());
-  dpcr::TiledGridStorage<4, 4> slow(pool_b.get());
-  fast.Reset(CellIndex{-2, -2});
-  slow.Reset(CellIndex{-2, -2});
-  fast.set_settle_at_bounds(settle);
-  slow.set_settle_at_bounds(settle);
-  std::uint32_t seed = 12345;
+  TwinGrids twins(GENERATE(false, true));
+  dpcr::TiledGrid& fast = twins.a;
+  dpcr::TiledGrid& slow = twins.b;
+  Lcg next{12345};
   int dropped = 0, exits = 0;
-  const auto next = [&seed](int lo, int hi) {
-    seed = seed * 1664525u + 1013904223u;
-    return lo + static_cast<int>((seed >> 8) % static_cast<std::uint32_t>(hi - lo + 1));
-  };
   for (int i = 0; i < 4000; ++i) {
     const std::uint32_t stamp = static_cast<std::uint32_t>(i / 7);  // several segments per "scan"; 0 = no rule
     const CellIndex a{next(-64, 63), next(-64, 63)};
@@ -149,7 +167,7 @@ TEST_CASE("UpdateSegment equals per-cell Update along TraceCells (random segment
   }
   REQUIRE(dropped > 0);  // both the full pool and box exits were exercised
   REQUIRE(exits > 0);
-  REQUIRE(pool_a->used() == pool_b->used());
+  REQUIRE(twins.pool_a->used() == twins.pool_b->used());
   int at_bounds = 0;
   for (int y = -64; y < 64; ++y) {
     for (int x = -64; x < 64; ++x) {
@@ -161,20 +179,10 @@ TEST_CASE("UpdateSegment equals per-cell Update along TraceCells (random segment
 }
 
 TEST_CASE("UpdateSegments equals UpdateSegment one segment at a time") {
-  const bool settle = GENERATE(false, true);
-  auto pool_a = std::make_unique<dpcr::TilePoolStorage<12>>();
-  auto pool_b = std::make_unique<dpcr::TilePoolStorage<12>>();
-  dpcr::TiledGridStorage<4, 4> batched(pool_a.get());
-  dpcr::TiledGridStorage<4, 4> single(pool_b.get());
-  batched.Reset(CellIndex{-2, -2});
-  single.Reset(CellIndex{-2, -2});
-  batched.set_settle_at_bounds(settle);
-  single.set_settle_at_bounds(settle);
-  std::uint32_t seed = 777;
-  const auto next = [&seed](int lo, int hi) {
-    seed = seed * 1664525u + 1013904223u;
-    return lo + static_cast<int>((seed >> 8) % static_cast<std::uint32_t>(hi - lo + 1));
-  };
+  TwinGrids twins(GENERATE(false, true));
+  dpcr::TiledGrid& batched = twins.a;
+  dpcr::TiledGrid& single = twins.b;
+  Lcg next{777};
   dpcr::CellSegment segments[40];
   for (std::uint32_t scan = 1; scan <= 300; ++scan) {
     const std::size_t n = static_cast<std::size_t>(next(0, 40));
