@@ -26,7 +26,6 @@ Status FrontEnd::Init(const MapperConfig& config) {
   region_count_ = 0;
   current_region_ = previous_region_ = -1;
   reference_maps_[0] = reference_maps_[1] = -1;
-  reference_map_count_ = 0;
   scans_since_submap_lines_ = scans_since_region_lines_ = scans_since_second_ = 0;
   stamp_ = 0;
   return Status::kOk;
@@ -225,14 +224,13 @@ void FrontEnd::SecondRegistration() {
   RegionalMap& r = s_.regions[static_cast<std::size_t>(maps[0])];
   const FrontEndConfig& f = config_.front_end;
   ++scans_since_region_lines_;
-  const bool same_maps = n == reference_map_count_ && maps[0] == reference_maps_[0] && maps[1] == reference_maps_[1];
+  const bool same_maps = maps[0] == reference_maps_[0] && maps[1] == reference_maps_[1];
   if (!same_maps || scans_since_region_lines_ * static_cast<std::uint32_t>(f.second_registration_period) >=
                         static_cast<std::uint32_t>(f.region_line_period)) {
     BuildRegionReference(maps, n);
     ++fe_counters_.region_line_builds;
     reference_maps_[0] = maps[0];
     reference_maps_[1] = maps[1];
-    reference_map_count_ = n;
     scans_since_region_lines_ = 0;
   }
   RegisterSubmap(r);

@@ -117,8 +117,7 @@ class FrontEnd {
   int region_count_ = 0;
   int current_region_ = -1;
   int previous_region_ = -1;  // the region the robot was in before current_region_
-  int reference_maps_[2] = {-1, -1};  // whose lines region_reference holds
-  int reference_map_count_ = 0;
+  int reference_maps_[2] = {-1, -1};  // whose lines region_reference holds (-1: none)
   std::uint32_t scans_since_submap_lines_ = 0;
   std::uint32_t scans_since_region_lines_ = 0;
   std::uint32_t scans_since_second_ = 0;

@@ -48,12 +48,6 @@ std::int16_t TiledGrid::Get(CellIndex c) const {
   return id == kNoTile ? kUnknownCell : (*pool_)[id].cells[offset];
 }
 
-bool TiledGrid::HasTile(CellIndex c) const {
-  int offset = 0;
-  const int slot = SlotOf(c, &offset);
-  return slot >= 0 && index_[static_cast<std::size_t>(slot)] != kNoTile;
-}
-
 Tile* TiledGrid::TileForWrite(int slot) {
   DPCR_ASSERT(pool_ != nullptr);
   TileId& id = index_[static_cast<std::size_t>(slot)];
@@ -90,17 +84,6 @@ void ApplyDelta(std::int16_t* cell, std::int16_t delta, std::int16_t lo, std::in
   *cell = static_cast<std::int16_t>(v);
 }
 
-}  // namespace
-
-bool TiledGrid::Reserve(CellIndex c, std::uint32_t stamp) {
-  int offset = 0;
-  const int slot = SlotOf(c, &offset);
-  if (slot < 0) return false;
-  Tile* tile = TileForWrite(slot);
-  return tile != nullptr && MarkOnce(tile, offset, stamp);
-}
-
-namespace {
 
 // Updates cell `i` of a tile (row-major, 32 cells a row), once per scan when kStamped: bit i & 31
 // of updated[i >> 5] marks it. A settled cell is tested first and left unmarked: nothing in this

@@ -77,12 +77,6 @@ class TiledGrid {
   SegmentStats UpdateSegments(Span<const CellSegment> segments, std::int16_t delta, std::int16_t lo, std::int16_t hi,
                               std::uint32_t stamp);
 
-  // True when the cell's tile has been allocated (the cell may still be unknown).
-  bool HasTile(CellIndex c) const;
-
-  // Marks a cell as updated in scan `stamp` without changing it; false if it already was
-  // (or cannot be: out of box, pool full).
-  bool Reserve(CellIndex c, std::uint32_t stamp);
   // Update(c, delta, lo, hi, stamp) for each cell (stamp != 0), the stats summed: `applied`
   // counts the cells updated (not the repeats), the others the cells out of the box or lost to a
   // full pool. InsertRays applies a scan's hits so, before its misses.

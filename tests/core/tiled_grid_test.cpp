@@ -93,8 +93,6 @@ TEST_CASE("Updates clamp and happen at most once per cell per scan") {
   REQUIRE(grid.Get(c) == 600);  // only the first update of scan 7 counted
   REQUIRE(grid.Update(c, -400, -1000, 1000, 8) == Status::kOk);
   REQUIRE(grid.Get(c) == 200);
-  REQUIRE_FALSE(grid.Reserve(c, 8));
-  REQUIRE(grid.Reserve(c, 9));
 }
 
 TEST_CASE("Settled cells keep their value once they reach a bound") {
