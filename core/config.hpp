@@ -4,10 +4,10 @@
 
 #include <cstdint>
 
-#include "core/plicp.hpp"
-#include "core/pose2.hpp"
-#include "core/registration_reference.hpp"
-#include "core/status.hpp"
+#include "core/registration/plicp.hpp"
+#include "core/geometry/pose2.hpp"
+#include "core/registration/registration_reference.hpp"
+#include "core/base/status.hpp"
 
 namespace dpcr {
 

@@ -9,14 +9,14 @@
 
 #include "core/capacity.hpp"
 #include "core/config.hpp"
-#include "core/front_end.hpp"
-#include "core/map_fusion.hpp"
+#include "core/front_end/front_end.hpp"
+#include "core/grid/map_fusion.hpp"
 #include "core/mapper_types.hpp"
-#include "core/registration_reference.hpp"
-#include "core/scan.hpp"
-#include "core/submap.hpp"
-#include "core/tile_pool.hpp"
-#include "core/tiled_grid.hpp"
+#include "core/registration/registration_reference.hpp"
+#include "core/geometry/scan.hpp"
+#include "core/front_end/submap.hpp"
+#include "core/grid/tile_pool.hpp"
+#include "core/grid/tiled_grid.hpp"
 
 namespace dpcr {
 

@@ -5,9 +5,9 @@
 
 #include <cstdint>
 
-#include "core/odometry.hpp"
-#include "core/pose2.hpp"
-#include "core/status.hpp"
+#include "core/front_end/odometry.hpp"
+#include "core/geometry/pose2.hpp"
+#include "core/base/status.hpp"
 #include "hal/wheel_can_protocol.hpp"
 
 namespace dpcr {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/pose2.hpp"
+#include "core/geometry/pose2.hpp"
 
 namespace dpcr {
 namespace {

@@ -8,7 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/scan.hpp"
+#include "core/geometry/scan.hpp"
 #include "hal/ld06_decoder.hpp"
 #include "hal/scan_assembler.hpp"
 

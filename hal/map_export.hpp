@@ -6,9 +6,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/cell.hpp"
-#include "core/span.hpp"
-#include "core/tiled_grid.hpp"
+#include "core/grid/cell.hpp"
+#include "core/base/span.hpp"
+#include "core/grid/tiled_grid.hpp"
 
 namespace dpcr {
 

@@ -5,8 +5,8 @@
 
 #include <cstdint>
 
-#include "core/scan.hpp"
-#include "core/static_vector.hpp"
+#include "core/geometry/scan.hpp"
+#include "core/base/static_vector.hpp"
 #include "hal/lidar_packet.hpp"
 
 namespace dpcr {

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/pose2.hpp"
+#include "core/geometry/pose2.hpp"
 
 namespace dpcr::carmen {
 

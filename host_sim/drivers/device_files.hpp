@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/capacity.hpp"
-#include "core/odometry.hpp"
-#include "core/scan.hpp"
+#include "core/front_end/odometry.hpp"
+#include "core/geometry/scan.hpp"
 #include "hal/diff_drive_odometry.hpp"
 #include "hal/lidar_stream.hpp"
 #include "hal/wheel_can_protocol.hpp"

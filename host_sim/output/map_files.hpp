@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/tiled_grid.hpp"
+#include "core/grid/tiled_grid.hpp"
 #include "tools/eval/trajectory.hpp"
 
 namespace dpcr::output {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "core/pose2.hpp"
+#include "core/geometry/pose2.hpp"
 
 namespace dpcr::sim {
 

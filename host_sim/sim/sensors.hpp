@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <random>
 
-#include "core/odometry.hpp"
+#include "core/front_end/odometry.hpp"
 #include "host_sim/sim/world_ray_caster.hpp"
 
 namespace dpcr::sim {

@@ -9,7 +9,7 @@
 
 #include "core/capacity.hpp"
 #include "core/config.hpp"
-#include "core/scan.hpp"
+#include "core/geometry/scan.hpp"
 #include "host_sim/sim/coverage_planner.hpp"
 #include "host_sim/sim/motion.hpp"
 #include "host_sim/sim/sensors.hpp"

@@ -20,7 +20,7 @@
 #include "board/firmware_loop.hpp"
 #include "board/socketcan_port.hpp"
 #include "core/capacity.hpp"
-#include "core/pose2.hpp"
+#include "core/geometry/pose2.hpp"
 #include "hal/ld06_emitter.hpp"
 #include "hal/wheel_can_protocol.hpp"
 

@@ -5,9 +5,9 @@
 #include <random>
 #include <vector>
 
-#include "core/pool.hpp"
-#include "core/ring_buffer.hpp"
-#include "core/static_vector.hpp"
+#include "core/base/pool.hpp"
+#include "core/base/ring_buffer.hpp"
+#include "core/base/static_vector.hpp"
 
 using dpcr::Status;
 

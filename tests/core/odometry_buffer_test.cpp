@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "core/odometry_buffer.hpp"
+#include "core/front_end/odometry_buffer.hpp"
 
 using dpcr::OdometrySample;
 using dpcr::Pose2;

@@ -6,8 +6,8 @@
 
 #include <Eigen/LU>
 
-#include "core/classic_plicp.hpp"
-#include "core/plicp.hpp"
+#include "core/registration/classic_plicp.hpp"
+#include "core/registration/plicp.hpp"
 #include "registration_fixtures.hpp"
 
 using dpcr::Point2;

@@ -3,7 +3,7 @@
 
 #include <random>
 
-#include "core/pose2.hpp"
+#include "core/geometry/pose2.hpp"
 
 using dpcr::Pose2;
 

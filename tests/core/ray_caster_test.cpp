@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/ray_caster.hpp"
+#include "core/grid/ray_caster.hpp"
 
 using dpcr::CellIndex;
 using dpcr::Point2;

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "core/region_tracker.hpp"
+#include "core/front_end/region_tracker.hpp"
 
 TEST_CASE("Regions are keyed from the start and switch only past the hysteresis") {
   dpcr::RegionTracker t;

@@ -7,9 +7,9 @@
 #include <random>
 #include <vector>
 
-#include "core/ray_caster.hpp"
-#include "core/registration_reference.hpp"
-#include "core/tiled_grid.hpp"
+#include "core/grid/ray_caster.hpp"
+#include "core/registration/registration_reference.hpp"
+#include "core/grid/tiled_grid.hpp"
 
 namespace dpcr_test {
 

@@ -5,7 +5,7 @@
 #include <random>
 #include <vector>
 
-#include "core/submap.hpp"
+#include "core/front_end/submap.hpp"
 
 using dpcr::CellIndex;
 using dpcr::Point2;

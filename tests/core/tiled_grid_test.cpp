@@ -4,8 +4,8 @@
 #include <cmath>
 #include <memory>
 
-#include "core/cell_line.hpp"
-#include "core/tiled_grid.hpp"
+#include "core/registration/cell_line.hpp"
+#include "core/grid/tiled_grid.hpp"
 
 using dpcr::CellIndex;
 using dpcr::Status;

@@ -4,7 +4,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/pose2.hpp"
+#include "core/geometry/pose2.hpp"
 #include "hal/ld06_emitter.hpp"
 #include "hal/lidar_stream.hpp"
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "core/assert.hpp"
+#include "core/base/assert.hpp"
 
 namespace {
 void FailOnCoreAssert(const char* expression, const char* file, int line) {

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "core/pose2.hpp"
-#include "core/registration_reference.hpp"
-#include "core/tiled_grid.hpp"
+#include "core/geometry/pose2.hpp"
+#include "core/registration/registration_reference.hpp"
+#include "core/grid/tiled_grid.hpp"
 
 namespace dpcr_bench {
 

@@ -13,10 +13,10 @@
 #include <sstream>
 #include <vector>
 
-#include "core/classic_plicp.hpp"
-#include "core/plicp.hpp"
-#include "core/ray_caster.hpp"
-#include "core/registration_reference.hpp"
+#include "core/registration/classic_plicp.hpp"
+#include "core/registration/plicp.hpp"
+#include "core/grid/ray_caster.hpp"
+#include "core/registration/registration_reference.hpp"
 #include "tools/bench/figure.hpp"
 #include "tools/bench/sim_worlds.hpp"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/pose2.hpp"
+#include "core/geometry/pose2.hpp"
 
 namespace dpcr::eval {
 

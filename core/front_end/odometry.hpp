@@ -1,0 +1,18 @@
+// Wheel odometry as the core takes it: absolute poses in the odometry frame, stamped.
+// Increments are accumulated into an absolute pose by the caller-facing Mapper API.
+#pragma once
+
+#include <cstdint>
+
+#include "core/geometry/pose2.hpp"
+
+namespace dpcr {
+
+struct OdometrySample {
+  std::int64_t stamp_us = 0;
+  Pose2 pose;                  // wheel pose in the odometry frame (drifts; only increments matter)
+  bool has_gyro = false;
+  float gyro_yaw_rate = 0.0f;  // rad/s, when has_gyro
+};
+
+}  // namespace dpcr

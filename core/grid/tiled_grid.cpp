@@ -1,0 +1,259 @@
+#include "core/grid/tiled_grid.hpp"
+
+#include <cstddef>
+
+#include "core/base/assert.hpp"
+
+namespace dpcr {
+TiledGrid::TiledGrid(TilePool* pool, Span<TileId> index, int tiles_x, int tiles_y)
+    : pool_(pool), index_(index), tiles_x_(tiles_x), tiles_y_(tiles_y) {
+  DPCR_ASSERT(tiles_x > 0 && tiles_y > 0);
+  DPCR_ASSERT(index.size() == static_cast<std::size_t>(tiles_x * tiles_y));
+  for (TileId& id : index_) id = kNoTile;
+}
+
+void TiledGrid::Reset(CellIndex origin_tile) {
+  for (TileId& id : index_) {
+    if (id != kNoTile && pool_ != nullptr) pool_->Free(id);
+    id = kNoTile;
+  }
+  allocated_tiles_ = 0;
+  origin_tile_ = origin_tile;
+}
+
+CellBox TiledGrid::box() const {
+  return CellBox{CellIndex{origin_tile_.x * kTileSide, origin_tile_.y * kTileSide},
+                 CellIndex{(origin_tile_.x + tiles_x_) * kTileSide, (origin_tile_.y + tiles_y_) * kTileSide}};
+}
+
+int TiledGrid::SlotOf(CellIndex c, int* offset) const {
+  // Tiles are 32 cells: an arithmetic shift is the floor division (GCC and Clang shift signed
+  // integers arithmetically), and this is the hottest line of ray casting.
+  static_assert(kTileSide == 32, "shift and mask below assume 32-cell tiles");
+  const std::int32_t tx = (c.x >> 5) - origin_tile_.x;
+  const std::int32_t ty = (c.y >> 5) - origin_tile_.y;
+  if (static_cast<std::uint32_t>(tx) >= static_cast<std::uint32_t>(tiles_x_) ||
+      static_cast<std::uint32_t>(ty) >= static_cast<std::uint32_t>(tiles_y_)) {
+    return -1;
+  }
+  *offset = ((c.y & 31) << 5) | (c.x & 31);
+  return ty * tiles_x_ + tx;
+}
+
+std::int16_t TiledGrid::Get(CellIndex c) const {
+  int offset = 0;
+  const int slot = SlotOf(c, &offset);
+  if (slot < 0) return kUnknownCell;
+  const TileId id = index_[static_cast<std::size_t>(slot)];
+  return id == kNoTile ? kUnknownCell : (*pool_)[id].cells[offset];
+}
+
+Tile* TiledGrid::TileForWrite(int slot) {
+  DPCR_ASSERT(pool_ != nullptr);
+  TileId& id = index_[static_cast<std::size_t>(slot)];
+  if (id == kNoTile) {
+    id = pool_->Allocate();
+    if (id == kNoTile) return nullptr;
+    ++allocated_tiles_;
+  }
+  return &(*pool_)[id];
+}
+
+namespace {
+
+// Marks `offset` as updated in scan `stamp`; false if it already was.
+bool MarkOnce(Tile* tile, int offset, std::uint32_t stamp) {
+  if (tile->stamp != stamp) {
+    for (std::uint32_t& word : tile->updated) word = 0;
+    tile->stamp = stamp;
+  }
+  std::uint32_t& word = tile->updated[offset >> 5];
+  const std::uint32_t bit = 1u << (offset & 31);
+  if ((word & bit) != 0) return false;
+  word |= bit;
+  return true;
+}
+
+// Adds a log-odds delta, clamped; an unknown cell starts from 0 (p = 0.5). With `settle`, a
+// cell already at a bound stays there.
+void ApplyDelta(std::int16_t* cell, std::int16_t delta, std::int16_t lo, std::int16_t hi, bool settle) {
+  if (settle && (*cell == lo || *cell == hi)) return;
+  int v = (*cell == kUnknownCell ? 0 : *cell) + delta;
+  v = v < lo ? lo : v;
+  v = v > hi ? hi : v;
+  *cell = static_cast<std::int16_t>(v);
+}
+
+
+// Updates cell `i` of a tile (row-major, 32 cells a row), once per scan when kStamped: bit i & 31
+// of updated[i >> 5] marks it. A settled cell is tested first and left unmarked: nothing in this
+// scan can change it, so a later visit that finds it unmarked skips it all the same (on the
+// regional maps most visits end here).
+template <bool kStamped, bool kSettle>
+inline void UpdateCell(Tile* tile, std::ptrdiff_t i, std::int32_t delta, std::int32_t lo, std::int32_t hi) {
+  std::int16_t* cell = &tile->cells[i];
+  const std::int32_t old = *cell;
+  if (kSettle && (old == lo || old == hi)) return;
+  if (kStamped) {
+    const std::uint32_t bit = 1u << (i & 31), word = tile->updated[i >> 5];
+    if ((word & bit) != 0) return;
+    tile->updated[i >> 5] = word | bit;
+  }
+  std::int32_t v = (old == kUnknownCell ? 0 : old) + delta;
+  v = v < lo ? lo : v;
+  v = v > hi ? hi : v;
+  *cell = static_cast<std::int16_t>(v);
+}
+
+}  // namespace
+
+template <bool kXMajor, int kMajorS, bool kStamped, bool kSettle>
+inline void TiledGrid::WalkSegment(CellSegment s, std::int32_t delta, std::int32_t lo, std::int32_t hi,
+                                   std::uint32_t stamp, SegmentStats* st) {
+  // TraceCells' Bresenham walk (same cells, same order), cut into runs of cells in one tile: the
+  // tile lookup, allocation and stamp check happen once per run, and inside a run the walk moves
+  // the cell's index in the tile (+-1 along x, +-32 along y), which also names its "updated" bit.
+  // BresenhamWalk::Step always moves the major axis (x when kXMajor: dx >= dy) and moves the
+  // minor one when its error term says so. Here the error is kept as in the classic integer line:
+  // g = 2 * minor extent - major extent at the start (g = dx - 2 err when x is major, 2 err + dy
+  // when y is); the minor axis moves when g > 0 (then g -= 2 * major extent), and g += 2 * minor
+  // extent at every step. So a run is a counted loop to the tile edge along the major axis, and
+  // the minor axis is tested against the tile only when it moves.
+  static_assert(kTileSide == 32, "one 32-bit word of updated bits per tile row");
+  const CellIndex a = s.from, b = s.to;
+  const std::int32_t dx = b.x >= a.x ? b.x - a.x : a.x - b.x, dy = b.y >= a.y ? b.y - a.y : a.y - b.y;
+  const std::int32_t major_n = kXMajor ? dx : dy, minor_n = kXMajor ? dy : dx;
+  // The major axis's direction (kMajorS) is a template argument: one register less in the run.
+  const std::int32_t major_s = kMajorS;
+  const std::int32_t minor_s = kXMajor ? (b.y >= a.y ? 1 : -1) : (b.x >= a.x ? 1 : -1);
+  std::int32_t g = 2 * minor_n - major_n;
+  std::int32_t major = kXMajor ? a.x : a.y, minor = kXMajor ? a.y : a.x;  // global cells
+  std::int32_t left = major_n;  // every step moves the major axis; b excluded
+  const std::int32_t two_major = 2 * major_n, two_minor = 2 * minor_n;
+  // A step's move of the index in a tile: 1 along x, 32 along y.
+  const std::int32_t major_step = kXMajor ? major_s : 32 * major_s, minor_step = kXMajor ? 32 * minor_s : minor_s;
+  while (left > 0) {
+    const std::int32_t x = kXMajor ? major : minor, y = kXMajor ? minor : major;
+    const std::int32_t tx = (x >> 5) - origin_tile_.x, ty = (y >> 5) - origin_tile_.y;
+    if (static_cast<std::uint32_t>(tx) >= static_cast<std::uint32_t>(tiles_x_) ||
+        static_cast<std::uint32_t>(ty) >= static_cast<std::uint32_t>(tiles_y_)) {
+      ++st->out_of_box;  // the box is convex: the ray never comes back
+      return;
+    }
+    Tile* tile = TileForWrite(ty * tiles_x_ + tx);
+    if (kStamped && tile != nullptr && tile->stamp != stamp) {
+      for (std::uint32_t& word : tile->updated) word = 0;
+      tile->stamp = stamp;
+    }
+    // The run: tile-local, `cell` is the index in the tile; it ends at the tile edge along the
+    // major axis (n >= 1 steps) or when the minor axis has used up its `room` in the tile.
+    const std::int32_t major_base = major & ~31, minor_base = minor & ~31;
+    const std::int32_t start = major & 31, lminor = minor & 31;
+    const std::int32_t room0 = minor_s > 0 ? 31 - lminor : lminor;
+    std::int32_t room = room0;
+    std::ptrdiff_t cell = kXMajor ? (lminor << 5) | start : (start << 5) | lminor;
+    const std::int32_t to_edge = major_s > 0 ? 32 - start : start + 1;
+    const std::int32_t n = left < to_edge ? left : to_edge;
+    std::int32_t k = n;
+    do {
+      if (tile != nullptr) UpdateCell<kStamped, kSettle>(tile, cell, delta, lo, hi);
+      cell += major_step;
+      if (g > 0) {
+        g += two_minor - two_major;
+        cell += minor_step;
+        if (--room < 0) {
+          --k;
+          break;
+        }
+      } else {
+        g += two_minor;
+      }
+    } while (--k != 0);
+    const std::int32_t walked = n - k;
+    const std::int32_t lmajor = start + walked * major_s;
+    left -= walked;
+    if (tile != nullptr) {
+      st->applied += walked;
+    } else {
+      st->dropped_pool_full += walked;  // nothing is freed while a scan is inserted: no retry
+    }
+    major = major_base + lmajor;
+    minor = minor_base + lminor + (room0 - room) * minor_s;
+  }
+}
+
+template <bool kStamped, bool kSettle>
+TiledGrid::SegmentStats TiledGrid::WalkSegments(Span<const CellSegment> segments, std::int32_t delta, std::int32_t lo,
+                                                std::int32_t hi, std::uint32_t stamp) {
+  SegmentStats st;
+  for (const CellSegment& s : segments) {
+    const std::int32_t dx = s.to.x >= s.from.x ? s.to.x - s.from.x : s.from.x - s.to.x;
+    const std::int32_t dy = s.to.y >= s.from.y ? s.to.y - s.from.y : s.from.y - s.to.y;
+    if (dx >= dy) {
+      if (s.to.x >= s.from.x) {
+        WalkSegment<true, 1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+      } else {
+        WalkSegment<true, -1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+      }
+    } else if (s.to.y >= s.from.y) {
+      WalkSegment<false, 1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+    } else {
+      WalkSegment<false, -1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+    }
+  }
+  return st;
+}
+
+TiledGrid::SegmentStats TiledGrid::UpdateSegments(Span<const CellSegment> segments, std::int16_t delta, std::int16_t lo,
+                                                   std::int16_t hi, std::uint32_t stamp) {
+  // The stamp and settle rules are fixed for the batch: the walk is chosen once.
+  if (stamp != 0) {
+    return settle_at_bounds_ ? WalkSegments<true, true>(segments, delta, lo, hi, stamp)
+                             : WalkSegments<true, false>(segments, delta, lo, hi, stamp);
+  }
+  return settle_at_bounds_ ? WalkSegments<false, true>(segments, delta, lo, hi, stamp)
+                           : WalkSegments<false, false>(segments, delta, lo, hi, stamp);
+}
+
+TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::int16_t delta, std::int16_t lo,
+                                                  std::int16_t hi, std::uint32_t stamp) {
+  const CellSegment s{a, b};
+  return UpdateSegments(Span<const CellSegment>(&s, 1), delta, lo, hi, stamp);
+}
+
+TiledGrid::SegmentStats TiledGrid::UpdateCells(Span<const CellIndex> cells, std::int16_t delta, std::int16_t lo,
+                                               std::int16_t hi, std::uint32_t stamp) {
+  // Update() per cell, with its lookups inlined and repeats not counted.
+  DPCR_ASSERT(stamp != 0);
+  SegmentStats st;
+  for (const CellIndex c : cells) {
+    int offset = 0;
+    const int slot = SlotOf(c, &offset);
+    if (slot < 0) {
+      ++st.out_of_box;
+      continue;
+    }
+    Tile* tile = TileForWrite(slot);
+    if (tile == nullptr) {
+      ++st.dropped_pool_full;
+    } else if (MarkOnce(tile, offset, stamp)) {
+      ApplyDelta(&tile->cells[offset], delta, lo, hi, settle_at_bounds_);
+      ++st.applied;
+    }
+  }
+  return st;
+}
+
+Status TiledGrid::Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::int16_t hi,
+                         std::uint32_t stamp) {
+  int offset = 0;
+  const int slot = SlotOf(c, &offset);
+  if (slot < 0) return Status::kOutOfBounds;
+  Tile* tile = TileForWrite(slot);
+  if (tile == nullptr) return Status::kPoolFull;
+  // At most one update per cell per scan (stamp 0: no such rule); a repeat is legal and ignored.
+  if (stamp == 0 || MarkOnce(tile, offset, stamp)) ApplyDelta(&tile->cells[offset], delta, lo, hi, settle_at_bounds_);
+  return Status::kOk;
+}
+
+}  // namespace dpcr

@@ -1,0 +1,128 @@
+// An occupancy grid over a bounded box of tiles, each tile drawn from a shared TilePool on
+// first write, so unobserved space costs two bytes of index per tile and nothing else.
+// The box bounds the index, not the memory. Size-erased: TiledGridStorage<W, H> owns the index.
+#pragma once
+
+#include <cstdint>
+
+#include "core/grid/cell.hpp"
+#include "core/base/span.hpp"
+#include "core/base/status.hpp"
+#include "core/grid/tile_pool.hpp"
+
+namespace dpcr {
+
+// A half-open box of cells [min, max).
+struct CellBox {
+  CellIndex min;
+  CellIndex max;
+  bool Contains(CellIndex c) const { return c.x >= min.x && c.y >= min.y && c.x < max.x && c.y < max.y; }
+  std::int32_t width() const { return max.x - min.x; }
+  std::int32_t height() const { return max.y - min.y; }
+};
+
+// A Bresenham segment of cells from `from` towards `to` (`to` excluded).
+struct CellSegment {
+  CellIndex from;
+  CellIndex to;
+};
+
+class TiledGrid {
+ public:
+  // `pool` may be attached later (arrays of grids are built before their pool is known).
+  TiledGrid(TilePool* pool, Span<TileId> index, int tiles_x, int tiles_y);
+  void Attach(TilePool* pool) { pool_ = pool; }
+  TiledGrid(const TiledGrid&) = delete;
+  TiledGrid& operator=(const TiledGrid&) = delete;
+  ~TiledGrid() { Reset(); }
+
+  // Places the box so that its lower-left tile starts at `origin_tile` (in tile units)
+  // and releases every tile held so far.
+  void Reset(CellIndex origin_tile = CellIndex{0, 0});
+
+  CellBox box() const;
+  float resolution_m() const { return resolution_m_; }
+  void set_resolution_m(float r) { resolution_m_ = r; }
+
+  // Settled cells: once a cell reaches either clamp bound of an update, later updates leave it
+  // there. A regional map is the reference that re-anchors the robot; if confident walls and
+  // free space could still move, scans inserted at slightly drifted poses would drag them along
+  // and the map would follow the drift it is meant to remove. Off by default.
+  void set_settle_at_bounds(bool on) { settle_at_bounds_ = on; }
+  bool settle_at_bounds() const { return settle_at_bounds_; }
+
+  // kUnknownCell outside the box or in a tile never written.
+  std::int16_t Get(CellIndex c) const;
+
+  // Adds `delta` clamped to [lo, hi] if the cell was not yet updated in scan `stamp`
+  // (stamp 0 = no once-per-scan rule); a settled cell (see set_settle_at_bounds) keeps its value.
+  // kOutOfBounds outside the box, kPoolFull when the tile
+  // cannot be allocated (the update is dropped), kOk otherwise (also when skipped as a repeat).
+  Status Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::int16_t hi, std::uint32_t stamp);
+
+  // What UpdateSegment(s) did: updates applied (repeats within the scan included), whether the
+  // segment left the box (tracing stops there), updates lost to a full pool. Also UpdateCells'.
+  struct SegmentStats {
+    int applied = 0;
+    int out_of_box = 0;
+    int dropped_pool_full = 0;
+  };
+  // Update(c, delta, lo, hi, stamp) for every cell of the Bresenham segment a -> b (b excluded,
+  // the cells of TraceCells in its order), stopping at the first cell outside the box. Same result
+  // as the per-cell calls; the tile is looked up once per tile crossed, not once per cell.
+  SegmentStats UpdateSegment(CellIndex a, CellIndex b, std::int16_t delta, std::int16_t lo, std::int16_t hi,
+                             std::uint32_t stamp);
+  // UpdateSegment for each segment in turn, the stats summed. A scan's rays go in batches: the
+  // walk (stamp rule, settle rule) is chosen once per batch, not once per ray.
+  SegmentStats UpdateSegments(Span<const CellSegment> segments, std::int16_t delta, std::int16_t lo, std::int16_t hi,
+                              std::uint32_t stamp);
+
+  // Update(c, delta, lo, hi, stamp) for each cell (stamp != 0), the stats summed: `applied`
+  // counts the cells updated (not the repeats), the others the cells out of the box or lost to a
+  // full pool. InsertRays applies a scan's hits so, before its misses.
+  SegmentStats UpdateCells(Span<const CellIndex> cells, std::int16_t delta, std::int16_t lo, std::int16_t hi,
+                           std::uint32_t stamp);
+
+  int tiles_x() const { return tiles_x_; }
+  int tiles_y() const { return tiles_y_; }
+  CellIndex origin_tile() const { return origin_tile_; }
+  // The tile at box slot (tx, ty), or kNoTile.
+  TileId tile_at(int tx, int ty) const { return index_[static_cast<std::size_t>(ty * tiles_x_ + tx)]; }
+  std::size_t allocated_tiles() const { return allocated_tiles_; }
+  const TilePool& pool() const { return *pool_; }
+
+ private:
+  // The tile slot of a cell, -1 outside the box; `offset` gets the cell's place in its tile.
+  int SlotOf(CellIndex c, int* offset) const;
+  Tile* TileForWrite(int slot);
+  // UpdateSegments with the stamp and settle rules fixed at compile time, and one segment with
+  // its major axis (x when kXMajor) and that axis's direction (kMajorS, +-1) fixed too;
+  // tiled_grid.cpp.
+  template <bool kStamped, bool kSettle>
+  SegmentStats WalkSegments(Span<const CellSegment> segments, std::int32_t delta, std::int32_t lo, std::int32_t hi,
+                            std::uint32_t stamp);
+  template <bool kXMajor, int kMajorS, bool kStamped, bool kSettle>
+  void WalkSegment(CellSegment s, std::int32_t delta, std::int32_t lo, std::int32_t hi, std::uint32_t stamp,
+                   SegmentStats* st);
+
+  TilePool* pool_;
+  Span<TileId> index_;
+  int tiles_x_;
+  int tiles_y_;
+  CellIndex origin_tile_;
+  float resolution_m_ = 0.05f;
+  bool settle_at_bounds_ = false;
+  std::size_t allocated_tiles_ = 0;
+};
+
+template <int kTilesX, int kTilesY>
+class TiledGridStorage : public TiledGrid {
+ public:
+  explicit TiledGridStorage(TilePool* pool = nullptr)
+      : TiledGrid(pool, Span<TileId>(index_storage_, kTilesX * kTilesY), kTilesX, kTilesY) {}
+
+ private:
+  TileId index_storage_[kTilesX * kTilesY];
+};
+
+}  // namespace dpcr
