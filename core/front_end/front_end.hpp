@@ -18,6 +18,7 @@
 #include "core/front_end/odometry_buffer.hpp"
 #include "core/registration/plicp.hpp"
 #include "core/front_end/region_tracker.hpp"
+#include "core/front_end/regional_map.hpp"
 #include "core/registration/registration_reference.hpp"
 #include "core/geometry/scan.hpp"
 #include "core/geometry/scan_projection.hpp"
@@ -29,13 +30,6 @@
 #define DPCR_STAGE __attribute__((noinline))
 
 namespace dpcr {
-
-struct RegionalMap {
-  RegionKey key;
-  Pose2 anchor;              // the map's frame in the world; the back end moves it
-  TiledGrid* grid = nullptr;  // points into the Mapper's storage
-  std::uint32_t scans_inserted = 0;
-};
 
 // Counts of what the registrations did (metrics.json "front_end").
 struct FrontEndCounters {
