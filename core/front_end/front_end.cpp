@@ -14,20 +14,18 @@ Status FrontEnd::Init(const MapperConfig& config) {
     return Status::kInvalidArgument;
   }
   config_ = config;
-  for (int i = 0; i < region_count_; ++i) s_.regions[static_cast<std::size_t>(i)].grid->Reset();
+  regions_.Reset(config.grid, config.front_end.region_miss_range_m);
   s_.submap->Reset(config.grid, config.front_end.submap_scans, config.front_end.submap_miss_range_m);
   status_ = MapperStatus::kWaitingForData;
   counters_ = MapperCounters{};
   fe_counters_ = FrontEndCounters{};
   odometry_.Clear();
   pose_ = submap_pose_ = last_odom_ = Pose2::Identity();
-  have_odom_ = have_scan_ = pool_full_ = false;
+  have_odom_ = have_scan_ = false;
   consecutive_rejections_ = 0;
-  region_count_ = 0;
-  current_region_ = previous_region_ = -1;
   reference_maps_[0] = reference_maps_[1] = -1;
-  scans_since_submap_lines_ = scans_since_region_lines_ = scans_since_second_ = 0;
-  stamp_ = 0;
+  scans_since_submap_lines_ = scans_since_second_ = second_registrations_since_region_lines_ = 0;
+  scan_marker_.Reset();
   return Status::kOk;
 }
 
@@ -53,7 +51,7 @@ Pose2 FrontEnd::Predict(std::int64_t stamp_us) {
 
 Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   ++counters_.scans;
-  if (++stamp_ == 0) stamp_ = 1;  // 0 means "no once-per-scan rule" to the grid
+  (void)scan_marker_.Next();
   // 1. Prediction and de-skew.
   const Pose2 predicted = Predict(stamp_us);
   const ProjectedScan projected = ProjectScan(beams, stamp_us, config_.lidar, odometry_, s_.hits, s_.free_ends);
@@ -139,54 +137,24 @@ void FrontEnd::RegisterScan(std::size_t hits, const Pose2& predicted) {
 
 void FrontEnd::EnterRegion(bool first) {
   const RegionKey key = tracker_.current();
-  for (int i = 0; i < region_count_; ++i) {
-    if (s_.regions[static_cast<std::size_t>(i)].key == key) {
-      if (current_region_ >= 0 && i != current_region_) previous_region_ = current_region_;
-      current_region_ = i;
+  switch (regions_.Enter(key, tracker_.Centre(key))) {
+    case RegionSet::Entry::kKnown:
       // Re-entering a known region: align the submap to it at once (paper: on region entry).
       if (config_.front_end.enable_registration) SecondRegistration();
-      return;
-    }
+      break;
+    case RegionSet::Entry::kCreated:
+      ++counters_.regions_created;
+      // A new regional map starts from the submap (paper §3.4: "the submap is directly used").
+      if (!first) {
+        const int dropped = regions_.SeedFromSubmap(*s_.submap, submap_pose_, s_.free_ends, scan_marker_);
+        counters_.updates_dropped_pool_full += static_cast<std::uint32_t>(dropped);
+      }
+      break;
+    case RegionSet::Entry::kPoolFull:
+      // Evict nothing: the map stops growing; localisation goes on against the submap.
+      ++counters_.region_pool_full;
+      break;
   }
-  if (static_cast<std::size_t>(region_count_) == s_.regions.size()) {
-    // Evict nothing: the map stops growing; localisation goes on against the submap.
-    ++counters_.region_pool_full;
-    pool_full_ = true;
-    if (current_region_ >= 0) previous_region_ = current_region_;  // still a reference (ReferenceRegion)
-    current_region_ = -1;
-    return;
-  }
-  RegionalMap& r = s_.regions[static_cast<std::size_t>(region_count_)];
-  const Point2 c = tracker_.Centre(key);
-  r.key = key;
-  r.anchor = Pose2{c.x, c.y, 0.0f};
-  r.scans_inserted = 0;
-  const int half = r.grid->tiles_x() / 2;
-  r.grid->set_resolution_m(config_.grid.resolution_m);
-  r.grid->set_settle_at_bounds(config_.grid.settle_at_clamp);
-  r.grid->Reset(CellIndex{-half, -half});
-  previous_region_ = current_region_;
-  current_region_ = region_count_++;
-  ++counters_.regions_created;
-  // A new regional map starts from the submap (paper §3.4: "the submap is directly used").
-  if (!first) SeedRegionFromSubmap(r);
-}
-
-void FrontEnd::SeedRegionFromSubmap(RegionalMap& r) {
-  // The newest scan is inserted by the caller; seed with the older ones.
-  const Pose2 to_region = r.anchor.Inverse() * submap_pose_;
-  for (int i = 0; i + 1 < s_.submap->size(); ++i) {
-    const SubmapScanView scan = s_.submap->scan(i);
-    const Pose2 p = to_region * scan.pose;
-    const PointTransform to_region_frame(p);
-    for (std::size_t k = 0; k < scan.points.size(); ++k) s_.free_ends[k] = to_region_frame(scan.points[k]);
-    if (++stamp_ == 0) stamp_ = 1;
-    const InsertionStats st = InsertRays(*r.grid, Point2{p.x, p.y}, Span<const Point2>(s_.free_ends.data(), scan.points.size()),
-                                         Span<const Point2>(), config_.grid, stamp_, s_.scratch);
-    counters_.updates_dropped_pool_full += static_cast<std::uint32_t>(st.dropped_pool_full);
-    if (st.dropped_pool_full > 0) pool_full_ = true;
-  }
-  if (++stamp_ == 0) stamp_ = 1;  // the scan being added gets its own stamp
 }
 
 bool FrontEnd::WellInside(const RegionalMap& r) const {
@@ -200,18 +168,19 @@ bool FrontEnd::WellInside(const RegionalMap& r) const {
 
 int FrontEnd::ReferenceMaps(int (&maps)[2]) const {
   const FrontEndConfig& f = config_.front_end;
-  const auto scans = [&](int i) { return s_.regions[static_cast<std::size_t>(i)].scans_inserted; };
+  const auto scans = [&](int i) { return regions_[i].scans_inserted; };
+  const int current = regions_.current(), previous = regions_.previous();
   int n = 0;
   // The current map, once it holds more than the submap it was seeded from.
-  if (current_region_ >= 0 && scans(current_region_) >= static_cast<std::uint32_t>(f.submap_scans)) maps[n++] = current_region_;
+  if (current >= 0 && scans(current) >= static_cast<std::uint32_t>(f.submap_scans)) maps[n++] = current;
   // With it, the mature map of the region the robot came from while the robot is well inside it:
   // walls seen from both regions then pull the new map towards the old one instead of letting each
   // keep its own heading (across a border, neighbouring maps disagreed by up to 0.7 deg). Only that
   // one: an older map seen again after a long loop may disagree with the drift accumulated since,
   // and reconciling them is the back end's job.
-  if (previous_region_ >= 0 && scans(previous_region_) >= static_cast<std::uint32_t>(f.region_mature_scans) &&
-      WellInside(s_.regions[static_cast<std::size_t>(previous_region_)])) {
-    maps[n++] = previous_region_;
+  if (previous >= 0 && scans(previous) >= static_cast<std::uint32_t>(f.region_mature_scans) &&
+      WellInside(regions_[previous])) {
+    maps[n++] = previous;
   }
   return n;
 }
@@ -221,17 +190,17 @@ void FrontEnd::SecondRegistration() {
   int maps[2] = {-1, -1};
   const int n = ReferenceMaps(maps);
   if (n == 0) return;
-  RegionalMap& r = s_.regions[static_cast<std::size_t>(maps[0])];
+  RegionalMap& r = regions_[maps[0]];
   const FrontEndConfig& f = config_.front_end;
-  ++scans_since_region_lines_;
+  ++second_registrations_since_region_lines_;
   const bool same_maps = maps[0] == reference_maps_[0] && maps[1] == reference_maps_[1];
-  if (!same_maps || scans_since_region_lines_ * static_cast<std::uint32_t>(f.second_registration_period) >=
+  if (!same_maps || second_registrations_since_region_lines_ * static_cast<std::uint32_t>(f.second_registration_period) >=
                         static_cast<std::uint32_t>(f.region_line_period)) {
     BuildRegionReference(maps, n);
     ++fe_counters_.region_line_builds;
     reference_maps_[0] = maps[0];
     reference_maps_[1] = maps[1];
-    scans_since_region_lines_ = 0;
+    second_registrations_since_region_lines_ = 0;
   }
   RegisterSubmap(r);
 }
@@ -239,13 +208,13 @@ void FrontEnd::SecondRegistration() {
 void FrontEnd::BuildRegionReference(const int (&maps)[2], int n) {
   // One reference over the maps, in the first one's frame. Regions are squares of one lattice
   // and their anchors are not rotated, so another map's cells are a whole number of cells away.
-  const RegionalMap& r = s_.regions[static_cast<std::size_t>(maps[0])];
+  const RegionalMap& r = regions_[maps[0]];
   const float res = r.grid->resolution_m();
   RegistrationReference& reference = *s_.region_reference;
   ReferenceBuildStats stats;
   reference.BeginBuild(r.grid->box(), res);
   for (int k = 0; k < n; ++k) {
-    const RegionalMap& m = s_.regions[static_cast<std::size_t>(maps[k])];
+    const RegionalMap& m = regions_[maps[k]];
     const CellIndex shift{static_cast<std::int32_t>(std::lround((m.anchor.x - r.anchor.x) / res)),
                           static_cast<std::int32_t>(std::lround((m.anchor.y - r.anchor.y) / res))};
     reference.AddGrid(*m.grid, shift, config_.front_end.region_reference, &stats);
@@ -281,25 +250,16 @@ void FrontEnd::RegisterSubmap(RegionalMap& r) {
 }
 
 void FrontEnd::InsertIntoRegion(const ProjectedScan& projected) {
-  if (current_region_ < 0) return;
-  RegionalMap& r = s_.regions[static_cast<std::size_t>(current_region_)];
-  const Pose2 to_region = r.anchor.Inverse() * pose();
-  // hits/free_ends are robot-frame; move them into the region's frame in place (the submap
-  // already copied the robot-frame points).
-  const PointTransform into_region(to_region);
-  for (std::size_t i = 0; i < projected.hits; ++i) s_.hits[i] = into_region(s_.hits[i]);
-  for (std::size_t i = 0; i < projected.free_ends; ++i) s_.free_ends[i] = into_region(s_.free_ends[i]);
-  const InsertionStats st = InsertRays(*r.grid, Point2{to_region.x, to_region.y}, Span<const Point2>(s_.hits.data(), projected.hits),
-                                       Span<const Point2>(s_.free_ends.data(), projected.free_ends), config_.grid, stamp_, s_.scratch,
-                                       config_.front_end.region_miss_range_m);
-  ++r.scans_inserted;
+  // The submap already copied the robot-frame points: they may move into the region's frame.
+  const InsertionStats st = regions_.InsertScan(pose(), Span<Point2>(s_.hits.data(), projected.hits),
+                                                Span<Point2>(s_.free_ends.data(), projected.free_ends),
+                                                scan_marker_.current());
   counters_.updates_out_of_box += static_cast<std::uint32_t>(st.out_of_box);
   counters_.updates_dropped_pool_full += static_cast<std::uint32_t>(st.dropped_pool_full);
-  if (st.dropped_pool_full > 0) pool_full_ = true;
 }
 
 void FrontEnd::UpdateStatus() {
-  if (pool_full_) {
+  if (regions_.pool_full()) {
     status_ = MapperStatus::kPoolFull;
   } else if (consecutive_rejections_ >= config_.front_end.lost_after_rejections) {
     status_ = MapperStatus::kLost;

@@ -13,21 +13,18 @@
 
 #include <cstdint>
 
+#include "core/base/stage.hpp"
 #include "core/config.hpp"
-#include "core/mapper_types.hpp"
 #include "core/front_end/odometry_buffer.hpp"
-#include "core/registration/plicp.hpp"
+#include "core/front_end/region_set.hpp"
 #include "core/front_end/region_tracker.hpp"
-#include "core/front_end/regional_map.hpp"
-#include "core/registration/registration_reference.hpp"
+#include "core/front_end/submap.hpp"
 #include "core/geometry/scan.hpp"
 #include "core/geometry/scan_projection.hpp"
-#include "core/front_end/submap.hpp"
-#include "core/grid/tiled_grid.hpp"
-
-// The per-stage cost budgets (tests/budget/stage_cost.sh, label "budget") count instructions by
-// function: stage functions stay out of line so that callgrind sees each as one call.
-#define DPCR_STAGE __attribute__((noinline))
+#include "core/grid/scan_marker.hpp"
+#include "core/mapper_types.hpp"
+#include "core/registration/plicp.hpp"
+#include "core/registration/registration_reference.hpp"
 
 namespace dpcr {
 
@@ -46,17 +43,17 @@ struct FrontEndStorage {
   Submap* submap = nullptr;
   RegistrationReference* submap_reference = nullptr;
   RegistrationReference* region_reference = nullptr;
-  Span<RegionalMap> regions;
+  Span<RegionalMap> regions;  // the RegionSet's pool
   Span<Point2> hits;       // kMaxBeams each
   Span<Point2> free_ends;
   Span<Point2> target;     // second-registration target points (submap obstacle cells)
-  Span<CellIndex> scratch;
+  Span<CellIndex> scratch;  // the RegionSet's InsertRays scratch, kMaxBeams
   Span<Correspondence> correspondences;  // registration scratch, kMaxBeams
 };
 
 class FrontEnd {
  public:
-  explicit FrontEnd(const FrontEndStorage& storage) : s_(storage) {}
+  explicit FrontEnd(const FrontEndStorage& storage) : s_(storage), regions_(storage.regions, storage.scratch) {}
   FrontEnd(const FrontEnd&) = delete;
   FrontEnd& operator=(const FrontEnd&) = delete;
 
@@ -69,21 +66,20 @@ class FrontEnd {
   const MapperCounters& counters() const { return counters_; }
   const FrontEndCounters& front_end_counters() const { return fe_counters_; }
   const MapperConfig& config() const { return config_; }
-  int region_count() const { return region_count_; }
-  const RegionalMap& region(int i) const { return s_.regions[static_cast<std::size_t>(i)]; }
+  int region_count() const { return regions_.size(); }
+  const RegionalMap& region(int i) const { return regions_[i]; }
   bool registration_enabled() const { return config_.front_end.enable_registration; }
 
  private:
   // Stages (budgeted): prediction = Predict + ProjectScan; first registration = RegisterScan;
-  // second registration = RegisterSubmap; insertion = Submap::Add + InsertIntoRegion +
-  // SeedRegionFromSubmap; line extraction = RegistrationReference::Build (submap) +
+  // second registration = RegisterSubmap; insertion = Submap::Add + RegionSet::InsertScan +
+  // RegionSet::SeedFromSubmap; line extraction = RegistrationReference::Build (submap) +
   // BuildRegionReference + RefitSubmapLines.
   DPCR_STAGE Pose2 Predict(std::int64_t stamp_us);
   DPCR_STAGE void RegisterScan(std::size_t hits, const Pose2& predicted);
   DPCR_STAGE void BuildRegionReference(const int (&maps)[2], int n);
   DPCR_STAGE void RegisterSubmap(RegionalMap& r);
-  DPCR_STAGE void InsertIntoRegion(const ProjectedScan& projected);
-  DPCR_STAGE void SeedRegionFromSubmap(RegionalMap& r);
+  void InsertIntoRegion(const ProjectedScan& projected);
   void RebuildSubmapReferenceIfDue();
   DPCR_STAGE void RefitSubmapLines();
   void EnterRegion(bool first);
@@ -101,21 +97,19 @@ class FrontEnd {
   FrontEndCounters fe_counters_;
   OdometryBuffer odometry_;
   RegionTracker tracker_;
+  RegionSet regions_;
   Pose2 pose_;         // robot in the submap frame
   Pose2 submap_pose_;  // submap frame in the world
   Pose2 last_odom_;
   bool have_odom_ = false;
   bool have_scan_ = false;
-  bool pool_full_ = false;
   int consecutive_rejections_ = 0;
-  int region_count_ = 0;
-  int current_region_ = -1;
-  int previous_region_ = -1;  // the region the robot was in before current_region_
   int reference_maps_[2] = {-1, -1};  // whose lines region_reference holds (-1: none)
   std::uint32_t scans_since_submap_lines_ = 0;
-  std::uint32_t scans_since_region_lines_ = 0;
   std::uint32_t scans_since_second_ = 0;
-  std::uint32_t stamp_ = 0;
+  // Second registrations since region_reference was built (each one Ks scans apart).
+  std::uint32_t second_registrations_since_region_lines_ = 0;
+  ScanMarker scan_marker_;
 };
 
 }  // namespace dpcr

@@ -23,8 +23,8 @@ stage() {
     prediction) echo $(( $(incl 'dpcr::FrontEnd::Predict(') + $(incl 'dpcr::ProjectScan(') )) ;;
     first_registration) incl 'dpcr::FrontEnd::RegisterScan(' ;;
     second_registration) incl 'dpcr::FrontEnd::RegisterSubmap(' ;;
-    insertion) echo $(( $(incl 'dpcr::Submap::Add(') + $(incl 'dpcr::FrontEnd::InsertIntoRegion(') + \
-                        $(incl 'dpcr::FrontEnd::SeedRegionFromSubmap(') )) ;;
+    insertion) echo $(( $(incl 'dpcr::Submap::Add(') + $(incl 'dpcr::RegionSet::InsertScan(') + \
+                        $(incl 'dpcr::RegionSet::SeedFromSubmap(') )) ;;
     line_extraction) echo $(( $(incl 'dpcr::RegistrationReference::Build(') + $(incl 'dpcr::FrontEnd::BuildRegionReference(') + \
                               $(incl 'dpcr::FrontEnd::RefitSubmapLines(') )) ;;
   esac
