@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "core/back_end/back_end_config.hpp"
 #include "core/registration/plicp.hpp"
 #include "core/geometry/pose2.hpp"
 #include "core/registration/registration_reference.hpp"
@@ -99,6 +100,7 @@ struct MapperConfig {
   GridConfig grid;
   LidarConfig lidar;
   FrontEndConfig front_end;
+  BackEndConfig back_end;
 };
 
 // kInvalidArgument when a parameter is out of its meaningful range (e.g. K2 <= 0, clamp_min >= 0).

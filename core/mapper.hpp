@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "core/back_end/back_end.hpp"
 #include "core/capacity.hpp"
 #include "core/config.hpp"
 #include "core/front_end/front_end.hpp"
@@ -28,6 +29,9 @@ class Mapper {
   static constexpr int kBoxTiles = Profile::kRegionBoxTiles;
   static constexpr int kRegionCells = kBoxTiles * kTileSide;
   static constexpr int kSecondTargetPoints = 600;
+  static constexpr int kBackEndCloudPoints = 600;
+  static constexpr int kSearchPoints = 200;
+  static constexpr int kMatchGridSide = kRegionCells / 2;
 
   Mapper() : front_end_(Storage()) {
     for (int i = 0; i < Profile::kMaxRegions; ++i) {
@@ -41,6 +45,10 @@ class Mapper {
   // Validates the configuration and clears all state. Call once at start-up (and to restart).
   Status Init(const MapperConfig& config) {
     if (config.front_end.submap_scans > Profile::kSubmapMaxScans) return Status::kInvalidArgument;
+    if (config.back_end.max_cloud_points > kBackEndCloudPoints || config.back_end.search_points > kSearchPoints ||
+        config.back_end.search_points > config.back_end.max_cloud_points || config.back_end.match_grid_coarsen < 2) {
+      return Status::kInvalidArgument;
+    }
     return front_end_.Init(config);
   }
   void AddOdometry(const OdometrySample& sample) { front_end_.AddOdometry(sample); }
@@ -62,6 +70,13 @@ class Mapper {
   const MapperConfig& config() const { return front_end_.config(); }
   const char* pipeline() const { return front_end_.registration_enabled() ? "dpcr-front-end" : "odometry"; }
   int region_count() const { return front_end_.region_count(); }
+  const BackEnd& back_end() const { return front_end_.back_end(); }
+  // The anchor of regional map i (the back end moves it).
+  Pose2 region_anchor(int i) const { return front_end_.region(i).anchor; }
+  // Where the last scan went (FrontEnd::last_scan_region): a trajectory kept as (map, pose in
+  // the map) follows every later optimisation.
+  int last_scan_region() const { return front_end_.last_scan_region(); }
+  Pose2 last_scan_in_region() const { return front_end_.last_scan_in_region(); }
 
   // World-frame bounds of everything mapped so far.
   CellBox MapBounds() const {
@@ -93,6 +108,13 @@ class Mapper {
     s.target = Span<Point2>(target_, kSecondTargetPoints);
     s.scratch = Span<CellIndex>(scratch_, Profile::kMaxBeams);
     s.correspondences = Span<Correspondence>(correspondences_, Profile::kMaxBeams);
+    s.back_end.graph = &graph_;
+    s.back_end.match_grid = &match_grid_;
+    s.back_end.reference = &region_reference_;
+    s.back_end.cloud = Span<Point2>(back_end_cloud_, kBackEndCloudPoints);
+    s.back_end.rotated = Span<Point2>(search_rotated_, kSearchPoints);
+    s.back_end.correspondences = s.correspondences;
+    s.back_end.jobs = Span<std::int32_t>(back_end_jobs_, Profile::kMaxRegions + 1);
     return s;
   }
   Span<const PlacedGrid> PlaceRegions(PlacedGrid* placed) const {
@@ -117,6 +139,12 @@ class Mapper {
   CellIndex scratch_[Profile::kMaxBeams];
   // Registration scratch for a scan's points (the second registration's larger target goes without).
   Correspondence correspondences_[Profile::kMaxBeams];
+  // The back end: the region graph, the loop-closure search grid, a region's cloud, its job queue.
+  PoseGraphStorage<Profile::kMaxRegions, Profile::kMaxGraphEdges> graph_;
+  MatchGridStorage<kMatchGridSide, kMatchGridSide> match_grid_;
+  Point2 back_end_cloud_[kBackEndCloudPoints];
+  Point2 search_rotated_[kSearchPoints];
+  std::int32_t back_end_jobs_[Profile::kMaxRegions + 1];
   Pose2 last_increment_pose_;
   FrontEnd front_end_;  // last: constructed from the storage above
 };

@@ -25,6 +25,9 @@ struct MapperCounters {
   std::uint32_t region_pool_full = 0;        // scans that wanted a new region and got none
   std::uint32_t updates_out_of_box = 0;      // cell updates past a regional map's box
   std::uint32_t updates_dropped_pool_full = 0;
+  // Scans kept out of the regional maps: the robot was back in a known map after a loop and had
+  // not yet placed itself in it (no smeared copy of the room).
+  std::uint32_t scans_not_inserted = 0;
 };
 
 }  // namespace dpcr

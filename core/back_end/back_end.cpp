@@ -179,22 +179,35 @@ LoopClosureResult BackEnd::TryLoopClosure(Span<RegionalMap> regions, int region,
   const CorrelativeSearchResult found = CorrelativeSearch(*s_.match_grid, Span<const Point2>(s_.cloud.data(), n), guess,
                                                           window_m, window_rad, config_.search, s_.rotated);
   out.search_score = found.score;
-  if (found.verdict != Status::kOk) {
-    ++counters_.loop_closures_rejected;
-    out.verdict = Status::kRejected;
-    return out;
-  }
+  // A weak or ambiguous search: the guess itself may still be within PLICP's basin.
+  const Pose2 start = found.verdict == Status::kOk ? found.pose : guess;
   // 2. Refined by PLICP against the map's lines.
   BuildReference(map);
   out.used_reference = true;
   const RegistrationResult r =
-      RegisterImproved(*s_.reference, cloud, found.pose, nullptr, config_.registration, s_.correspondences);
+      RegisterImproved(*s_.reference, cloud, start, nullptr, config_.closure_registration, s_.correspondences);
   if (r.verdict != Status::kOk) {
     ++counters_.loop_closures_rejected;
     out.verdict = Status::kRejected;
     return out;
   }
-  // 3. The edge region -> from: Z = S_region * S_from^-1, with S the submap in each frame. Its
+  if (!AddClosure(regions, region, from, r, submap_world)) {
+    out.verdict = Status::kRejected;
+    return out;
+  }
+  out.submap_in_region = r.pose;
+  out.verdict = Status::kOk;
+  return out;
+}
+
+bool BackEnd::AddClosure(Span<RegionalMap> regions, int region, int from, const RegistrationResult& r,
+                         const Pose2& submap_world) {
+  PoseGraph& g = *s_.graph;
+  if (!config_.enable || region < 0 || from < 0 || region == from || region >= g.vertex_count() ||
+      from >= g.vertex_count()) {
+    return false;
+  }
+  // The edge region -> from: Z = S_region * S_from^-1, with S the submap in each frame. Its
   // information is the registration's, carried from the submap's pose to Z (a rotation of the
   // submap swings the lever arm to the other anchor).
   const Pose2 in_region = r.pose;
@@ -204,9 +217,8 @@ LoopClosureResult BackEnd::TryLoopClosure(Span<RegionalMap> regions, int region,
   Eigen::Matrix3f j_inv = Eigen::Matrix3f::Identity();  // d S / d Z
   j_inv(0, 2) = lever.y;
   j_inv(1, 2) = -lever.x;
-  const Eigen::Matrix3f h = j_inv.transpose() * r.hessian * j_inv;
   RegistrationResult carried = r;
-  carried.hessian = h;
+  carried.hessian = j_inv.transpose() * r.hessian * j_inv;
   GraphEdge e;
   e.from = region;
   e.to = from;
@@ -218,14 +230,11 @@ LoopClosureResult BackEnd::TryLoopClosure(Span<RegionalMap> regions, int region,
     ++counters_.loop_closures_rejected;
     if (added == Status::kRejected) ++counters_.loop_closures_inconsistent;
     if (added == Status::kPoolFull) ++counters_.edges_dropped_full;
-    out.verdict = Status::kRejected;
-    return out;
+    return false;
   }
   ++counters_.loop_closures_accepted;
   WriteAnchors(regions);
-  out.submap_in_region = in_region;
-  out.verdict = Status::kOk;
-  return out;
+  return true;
 }
 
 }  // namespace dpcr

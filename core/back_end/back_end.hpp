@@ -13,6 +13,7 @@
 
 #include <cstdint>
 
+#include "core/back_end/back_end_config.hpp"
 #include "core/back_end/correlative_search.hpp"
 #include "core/back_end/pose_graph.hpp"
 #include "core/base/span.hpp"
@@ -22,43 +23,6 @@
 #include "core/registration/registration_reference.hpp"
 
 namespace dpcr {
-
-struct BackEndConfig {
-  bool enable = true;
-  // Map-to-map edges (paper Eqs. 10-11): regions whose anchors are within alpha S, both holding
-  // at least `min_scans` scans, registered with a MatchRate of at least `min_match_rate`.
-  float neighbour_factor = 1.5f;
-  int min_scans = 20;
-  float min_match_rate = 0.3f;
-  int max_cloud_points = 600;
-  // Information of a registration edge: the PLICP Hessian of unit-weight residuals, divided by
-  // the residual variance and by how many neighbouring points a wall's residuals share (cells of
-  // one wall are not independent measurements), plus a floor so that every direction is weakly
-  // held (a corridor edge stays weak along the corridor).
-  float residual_sigma_m = 0.03f;
-  float correlated_points = 20.0f;
-  float floor_sigma_m = 1.0f;
-  float floor_sigma_rad = 0.3f;
-  // The front end's chain between a region and the one it was created from.
-  float sequence_sigma_m = 0.05f;
-  float sequence_sigma_rad = 0.01f;
-  // Loop closures: the search window grows with the path since the robot last registered
-  // against the re-entered map (front-end drift), up to a limit.
-  float search_base_m = 0.3f;
-  float search_per_metre_m = 0.03f;
-  float search_max_m = 2.5f;
-  float search_base_rad = 0.05f;
-  float search_per_metre_rad = 0.002f;
-  float search_max_rad = 0.35f;
-  int search_points = 200;
-  int match_grid_coarsen = 2;  // match cells of 2 x 2 grid cells (10 cm)
-  CorrelativeSearchConfig search;
-  // Map-to-map registrations and the refinement of a found closure.
-  PlicpConfig registration;
-  // A closure is kept only if, optimised with it, no edge's chi2 exceeds this (pose_graph.hpp).
-  float max_edge_chi2 = 25.0f;
-  PoseGraphConfig optimizer;
-};
 
 struct BackEndCounters {
   std::uint32_t optimizations = 0;
@@ -122,6 +86,11 @@ class BackEnd {
   // regions) and the submap belongs at regions[region].anchor * submap_in_region.
   LoopClosureResult TryLoopClosure(Span<RegionalMap> regions, int region, int from, Span<const Point2> cloud,
                                    const Pose2& submap_world, float path_m);
+
+  // A registration of the submap (at `submap_world` before it) to region `region`'s map alone,
+  // made while the robot's pose was known in region `from`: the same closure edge, without the
+  // search. True when the graph took it (anchors moved and written into regions).
+  bool AddClosure(Span<RegionalMap> regions, int region, int from, const RegistrationResult& r, const Pose2& submap_world);
 
   const BackEndCounters& counters() const { return counters_; }
   const PoseGraph& graph() const { return *s_.graph; }

@@ -23,8 +23,38 @@ std::uint8_t LikelihoodOf(int d) {
 
 }  // namespace
 
-MatchGrid::MatchGrid(Span<std::uint8_t> cells, int max_w, int max_h) : cells_(cells), max_w_(max_w), max_h_(max_h) {
-  DPCR_ASSERT(cells.size() >= static_cast<std::size_t>(max_w * max_h));
+MatchGrid::MatchGrid(Span<std::uint8_t> cells, Span<std::uint8_t> bounds, int max_w, int max_h)
+    : cells_(cells), bounds_(bounds), max_w_(max_w), max_h_(max_h) {
+  DPCR_ASSERT(cells.size() >= static_cast<std::size_t>(max_w * max_h) && bounds.size() >= cells.size());
+}
+
+void MatchGrid::BuildBounds() {
+  // Rows first (max over x .. x + kBlock - 1), then columns, each a short sliding window.
+  for (int y = 0; y < h_; ++y) {
+    for (int x = 0; x < w_; ++x) {
+      std::uint8_t m = 0;
+      for (int k = 0; k < kBlock && x + k < w_; ++k) {
+        const std::uint8_t v = cells_[static_cast<std::size_t>(y * w_ + x + k)];
+        m = v > m ? v : m;
+      }
+      bounds_[static_cast<std::size_t>(y * w_ + x)] = m;
+    }
+  }
+  for (int x = 0; x < w_; ++x) {
+    for (int y = 0; y < h_; ++y) {
+      std::uint8_t m = 0;
+      for (int k = 0; k < kBlock && y + k < h_; ++k) {
+        const std::uint8_t v = bounds_[static_cast<std::size_t>((y + k) * w_ + x)];
+        m = v > m ? v : m;
+      }
+      bounds_[static_cast<std::size_t>(y * w_ + x)] = m;  // rows below y are read before written
+    }
+  }
+}
+
+std::uint8_t MatchGrid::BoundAtClamped(int x, int y) const {
+  // A block reaching in from the left or bottom edge: its cells inside start at 0.
+  return bounds_[static_cast<std::size_t>((y < 0 ? 0 : y) * w_ + (x < 0 ? 0 : x))];
 }
 
 void MatchGrid::Build(const TiledGrid& grid, CellBox window, int coarsen, std::int16_t obstacle_threshold) {
@@ -89,6 +119,7 @@ void MatchGrid::DistanceTransform() {
   std::uint8_t lut[256];
   for (int d = 0; d < 256; ++d) lut[d] = LikelihoodOf(d);
   for (int i = 0; i < w_ * h_; ++i) cells_[static_cast<std::size_t>(i)] = lut[cells_[static_cast<std::size_t>(i)]];
+  BuildBounds();
 }
 
 std::uint8_t MatchGrid::At(Point2 p) const {
@@ -105,6 +136,10 @@ struct Peak {
   float dtheta = 0.0f;
 };
 
+bool Excluded(const Peak* exclude, bool angle_far, int ox, int oy, int sep_cells) {
+  return exclude != nullptr && !angle_far && std::abs(ox - exclude->ox) < sep_cells && std::abs(oy - exclude->oy) < sep_cells;
+}
+
 // One sweep over the window. With `exclude` set, poses within the separation of it are skipped
 // (the search for a second, separate peak).
 Peak Sweep(const MatchGrid& grid, Span<const Point2> points, Pose2 initial, int n_offsets, int n_angles, float step,
@@ -113,24 +148,37 @@ Peak Sweep(const MatchGrid& grid, Span<const Point2> points, Pose2 initial, int 
   Peak best;
   const float inv_res = 1.0f / grid.resolution_m();
   const int sep_cells = static_cast<int>(config.peak_separation_m * inv_res);
+  constexpr int kB = MatchGrid::kBlock;
   for (int a = -n_angles; a <= n_angles; ++a) {
     const float dtheta = static_cast<float>(a) * step;
     const bool angle_far = exclude == nullptr || std::fabs(dtheta - exclude->dtheta) >= config.peak_separation_rad;
     const PointTransform t(Pose2{initial.x, initial.y, initial.theta + dtheta});
     for (std::size_t i = 0; i < points.size(); ++i) {
       const Point2 w = t(points[i]);
-      rotated[i] = Point2{(w.x - grid.origin().x) * inv_res, (w.y - grid.origin().y) * inv_res};
+      // Whole match cells: every offset below moves all points by whole cells.
+      rotated[i] = Point2{static_cast<float>(FloorToInt((w.x - grid.origin().x) * inv_res)),
+                          static_cast<float>(FloorToInt((w.y - grid.origin().y) * inv_res))};
     }
-    for (int oy = -n_offsets; oy <= n_offsets; ++oy) {
-      for (int ox = -n_offsets; ox <= n_offsets; ++ox) {
-        if (!angle_far && std::abs(ox - exclude->ox) < sep_cells && std::abs(oy - exclude->oy) < sep_cells) continue;
-        std::uint32_t sum = 0;
+    for (int by = -n_offsets; by <= n_offsets; by += kB) {
+      for (int bx = -n_offsets; bx <= n_offsets; bx += kB) {
+        // Upper bound of every offset in the block [bx, bx + kB) x [by, by + kB).
+        std::uint32_t bound = 0;
         for (std::size_t i = 0; i < points.size(); ++i) {
-          sum += grid.AtCell(FloorToInt(rotated[i].x) + ox, FloorToInt(rotated[i].y) + oy);
+          bound += grid.BoundAt(static_cast<int>(rotated[i].x) + bx, static_cast<int>(rotated[i].y) + by);
         }
         ++*evaluated;
-        const float score = static_cast<float>(sum);
-        if (score > best.score) best = Peak{score, ox, oy, dtheta};
+        if (static_cast<float>(bound) <= best.score) continue;
+        for (int oy = by; oy < by + kB && oy <= n_offsets; ++oy) {
+          for (int ox = bx; ox < bx + kB && ox <= n_offsets; ++ox) {
+            if (Excluded(exclude, angle_far, ox, oy, sep_cells)) continue;
+            std::uint32_t sum = 0;
+            for (std::size_t i = 0; i < points.size(); ++i) {
+              sum += grid.AtCell(static_cast<int>(rotated[i].x) + ox, static_cast<int>(rotated[i].y) + oy);
+            }
+            ++*evaluated;
+            if (static_cast<float>(sum) > best.score) best = Peak{static_cast<float>(sum), ox, oy, dtheta};
+          }
+        }
       }
     }
   }

@@ -19,7 +19,9 @@ namespace dpcr {
 // obstacle, falling with the distance to the nearest one (a chamfer distance transform).
 class MatchGrid {
  public:
-  MatchGrid(Span<std::uint8_t> cells, int max_w, int max_h);
+  // `bounds` (as large as `cells`): for each cell the largest likelihood of the kBlock x kBlock
+  // cells from it up and right, the upper bound a branch-and-bound search prunes by.
+  MatchGrid(Span<std::uint8_t> cells, Span<std::uint8_t> bounds, int max_w, int max_h);
   MatchGrid(const MatchGrid&) = delete;
   MatchGrid& operator=(const MatchGrid&) = delete;
 
@@ -32,6 +34,11 @@ class MatchGrid {
   std::uint8_t AtCell(int x, int y) const {
     return (x < 0 || y < 0 || x >= w_ || y >= h_) ? 0 : cells_[static_cast<std::size_t>(y * w_ + x)];
   }
+  // The largest likelihood of cells (x .. x + kBlock - 1, y .. y + kBlock - 1).
+  std::uint8_t BoundAt(int x, int y) const {
+    return (x <= -kBlock || y <= -kBlock || x >= w_ || y >= h_) ? 0 : BoundAtClamped(x, y);
+  }
+  static constexpr int kBlock = 4;
   float resolution_m() const { return res_; }
   Point2 origin() const { return origin_; }
   int width() const { return w_; }
@@ -40,8 +47,11 @@ class MatchGrid {
 
  private:
   void DistanceTransform();
+  void BuildBounds();
+  std::uint8_t BoundAtClamped(int x, int y) const;
 
   Span<std::uint8_t> cells_;
+  Span<std::uint8_t> bounds_;
   int max_w_, max_h_;
   int w_ = 0, h_ = 0;
   int obstacles_ = 0;
@@ -52,10 +62,11 @@ class MatchGrid {
 template <int kW, int kH>
 class MatchGridStorage : public MatchGrid {
  public:
-  MatchGridStorage() : MatchGrid(Span<std::uint8_t>(cells_, kW * kH), kW, kH) {}
+  MatchGridStorage() : MatchGrid(Span<std::uint8_t>(cells_, kW * kH), Span<std::uint8_t>(bounds_, kW * kH), kW, kH) {}
 
  private:
   std::uint8_t cells_[kW * kH];
+  std::uint8_t bounds_[kW * kH];
 };
 
 struct CorrelativeSearchConfig {
@@ -66,7 +77,7 @@ struct CorrelativeSearchConfig {
   float min_score = 0.55f;
   // Ambiguity: a peak at least `peak_separation_m` (or `peak_separation_rad`) from the best that
   // scores above `max_second_ratio` of it rejects the search.
-  float max_second_ratio = 0.9f;
+  float max_second_ratio = 0.95f;
   float peak_separation_m = 0.5f;
   float peak_separation_rad = 0.14f;
 };
@@ -80,7 +91,9 @@ struct CorrelativeSearchResult {
 };
 
 // Searches poses within +-window_m (x, y) and +-window_rad around `initial` for the cloud
-// `points` (in its own frame). `rotated` is scratch for the rotated cloud in match-cell units
+// `points` (in its own frame): every angle, translations by branch and bound (blocks of
+// kBlock x kBlock offsets scored by their upper bound first; only blocks that could beat the best
+// so far are scored cell by cell), the same answer as scoring every pose. `rotated` is scratch for the rotated cloud in match-cell units
 // (at least points.size() entries).
 CorrelativeSearchResult CorrelativeSearch(const MatchGrid& grid, Span<const Point2> points, Pose2 initial,
                                           float window_m, float window_rad, const CorrelativeSearchConfig& config,

@@ -26,6 +26,14 @@ Status FrontEnd::Init(const MapperConfig& config) {
   reference_maps_[0] = reference_maps_[1] = -1;
   scans_since_submap_lines_ = scans_since_second_ = second_registrations_since_region_lines_ = 0;
   scan_marker_.Reset();
+  back_end_.Init(config.back_end, config.front_end.region_width_m, config.front_end.region_reference.obstacle_threshold);
+  path_m_ = 0.0f;
+  last_world_ = Pose2::Identity();
+  last_scan_region_ = -1;
+  last_scan_in_region_ = Pose2::Identity();
+  anchor_region_ = -1;
+  lost_in_region_ = false;
+  scans_since_closure_try_ = 0;
   return Status::kOk;
 }
 
@@ -73,18 +81,37 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   ++scans_since_submap_lines_;
   // 3. Regions, and the second registration.
   const Pose2 world = pose();
+  if (have_scan_) path_m_ += std::hypot(world.x - last_world_.x, world.y - last_world_.y);
   if (!have_scan_) {
     tracker_.Start(Point2{world.x, world.y}, config_.front_end.region_width_m, config_.front_end.region_hysteresis_m);
     have_scan_ = true;
     EnterRegion(true);
   } else if (tracker_.Update(Point2{world.x, world.y})) {
     EnterRegion(false);
+  } else if (lost_in_region_) {
+    // Retry once the robot has moved on enough to see something new.
+    if (++scans_since_closure_try_ >= static_cast<std::uint32_t>(config_.back_end.loop_retry_scans) &&
+        path_m_ - path_at_closure_try_ >= config_.back_end.loop_retry_path_m) {
+      scans_since_closure_try_ = 0;
+      lost_in_region_ = !TryLoopClosure(anchor_region_);
+      if (!lost_in_region_) anchor_region_ = regions_.current();
+    }
   } else if (config_.front_end.enable_registration &&
              ++scans_since_second_ >= static_cast<std::uint32_t>(config_.front_end.second_registration_period)) {
     SecondRegistration();
   }
-  // 4b. Once into the current regional map.
-  InsertIntoRegion(projected);
+  // 4b. Once into the current regional map (not while the robot cannot place itself in it).
+  if (lost_in_region_) {
+    ++counters_.scans_not_inserted;
+    // Its pose is still known in the anchor region's frame.
+    last_scan_region_ = anchor_region_;
+    last_scan_in_region_ = Between(regions_[anchor_region_].anchor, pose());
+  } else {
+    InsertIntoRegion(projected);
+  }
+  // 5. Back end: at most one queued job.
+  StepBackEnd();
+  last_world_ = pose();
   UpdateStatus();
   return Status::kOk;
 }
@@ -137,13 +164,20 @@ void FrontEnd::RegisterScan(std::size_t hits, const Pose2& predicted) {
 
 void FrontEnd::EnterRegion(bool first) {
   const RegionKey key = tracker_.current();
+  const int left = regions_.current();
   switch (regions_.Enter(key, tracker_.Centre(key))) {
     case RegionSet::Entry::kKnown:
-      // Re-entering a known region: align the submap to it at once (paper: on region entry).
-      if (config_.front_end.enable_registration) SecondRegistration();
+      OnRegionLeft(left);
+      if (config_.front_end.enable_registration) EnterKnownRegion();
       break;
     case RegionSet::Entry::kCreated:
       ++counters_.regions_created;
+      OnRegionLeft(left);
+      // Chained to the map the robot's pose is known in (the region left, unless the robot came
+      // through a map it could not place itself in).
+      back_end_.AddRegion(regions_.maps(), regions_.current(), anchor_region_);
+      anchor_region_ = regions_.current();
+      lost_in_region_ = false;
       // A new regional map starts from the submap (paper §3.4: "the submap is directly used").
       if (!first) {
         const int dropped = regions_.SeedFromSubmap(*s_.submap, submap_pose_, s_.free_ends, scan_marker_);
@@ -151,6 +185,7 @@ void FrontEnd::EnterRegion(bool first) {
       }
       break;
     case RegionSet::Entry::kPoolFull:
+      lost_in_region_ = false;
       // Evict nothing: the map stops growing; localisation goes on against the submap.
       ++counters_.region_pool_full;
       break;
@@ -185,11 +220,11 @@ int FrontEnd::ReferenceMaps(int (&maps)[2]) const {
   return n;
 }
 
-void FrontEnd::SecondRegistration() {
+bool FrontEnd::SecondRegistration(RegistrationResult* result, int* region) {
   scans_since_second_ = 0;
   int maps[2] = {-1, -1};
   const int n = ReferenceMaps(maps);
-  if (n == 0) return;
+  if (n == 0) return false;
   RegionalMap& r = regions_[maps[0]];
   const FrontEndConfig& f = config_.front_end;
   ++second_registrations_since_region_lines_;
@@ -202,12 +237,16 @@ void FrontEnd::SecondRegistration() {
     reference_maps_[1] = maps[1];
     second_registrations_since_region_lines_ = 0;
   }
-  RegisterSubmap(r);
+  const RegistrationResult res = RegisterSubmap(r);
+  if (result != nullptr) *result = res;
+  if (region != nullptr) *region = maps[0];
+  return res.verdict == Status::kOk;
 }
 
 void FrontEnd::BuildRegionReference(const int (&maps)[2], int n) {
-  // One reference over the maps, in the first one's frame. Regions are squares of one lattice
-  // and their anchors are not rotated, so another map's cells are a whole number of cells away.
+  // One reference over the maps, in the first one's frame. Until the back end moves anchors,
+  // regions are squares of one lattice and another map's cells are a whole number of cells away
+  // (AddPlacedGrid takes the exact shift); after, they are carried cell by cell.
   const RegionalMap& r = regions_[maps[0]];
   const float res = r.grid->resolution_m();
   RegistrationReference& reference = *s_.region_reference;
@@ -215,27 +254,20 @@ void FrontEnd::BuildRegionReference(const int (&maps)[2], int n) {
   reference.BeginBuild(r.grid->box(), res);
   for (int k = 0; k < n; ++k) {
     const RegionalMap& m = regions_[maps[k]];
-    const CellIndex shift{static_cast<std::int32_t>(std::lround((m.anchor.x - r.anchor.x) / res)),
-                          static_cast<std::int32_t>(std::lround((m.anchor.y - r.anchor.y) / res))};
-    reference.AddGrid(*m.grid, shift, config_.front_end.region_reference, &stats);
+    reference.AddPlacedGrid(*m.grid, Between(r.anchor, m.anchor), config_.front_end.region_reference, &stats);
   }
   if (reference.FinishBuild(config_.front_end.region_reference, &stats) != Status::kOk) {
     fe_counters_.reference_cells_dropped += static_cast<std::uint32_t>(stats.dropped_cells);
   }
 }
 
-void FrontEnd::RegisterSubmap(RegionalMap& r) {
+RegistrationResult FrontEnd::RegisterSubmap(RegionalMap& r) {
   const FrontEndConfig& f = config_.front_end;
   // Target: the submap's obstacle cells (from its reference, rebuilt every K1 scans), evenly
   // thinned. Tried and dropped (docs/front-end-accuracy.md): the submap's raw points (noisier,
   // clutter included) and cell centres moved onto their refitted lines; both were less accurate.
-  const RegistrationReference& sub = *s_.submap_reference;
-  const std::size_t n = sub.cell_count();
-  if (n == 0) return;
-  const std::size_t max_points = static_cast<std::size_t>(f.second_registration_max_points);
-  const std::size_t stride = (n + max_points - 1) / max_points;
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < n; i += stride) s_.target[count++] = sub.CellCentre(static_cast<std::uint16_t>(i));
+  const std::size_t count = SubmapTarget();
+  if (count == 0) return RegistrationResult{};
   const Pose2 initial = r.anchor.Inverse() * submap_pose_;
   const PosePrior prior{initial, f.prior_info_xy, f.prior_info_theta};
   const RegistrationResult res =
@@ -247,15 +279,93 @@ void FrontEnd::RegisterSubmap(RegionalMap& r) {
   } else {
     ++fe_counters_.second_rejected;
   }
+  return res;
 }
 
 void FrontEnd::InsertIntoRegion(const ProjectedScan& projected) {
+  last_scan_region_ = regions_.current();
+  if (last_scan_region_ >= 0) {
+    RegionalMap& r = regions_[last_scan_region_];
+    last_scan_in_region_ = Between(r.anchor, pose());
+    r.path_at_last_scan_m = path_m_;
+  }
   // The submap already copied the robot-frame points: they may move into the region's frame.
   const InsertionStats st = regions_.InsertScan(pose(), Span<Point2>(s_.hits.data(), projected.hits),
                                                 Span<Point2>(s_.free_ends.data(), projected.free_ends),
                                                 scan_marker_.current());
   counters_.updates_out_of_box += static_cast<std::uint32_t>(st.out_of_box);
   counters_.updates_dropped_pool_full += static_cast<std::uint32_t>(st.dropped_pool_full);
+}
+
+void FrontEnd::EnterKnownRegion() {
+  const int region = regions_.current();
+  const float absence = path_m_ - regions_[region].path_at_last_scan_m;
+  // Align the submap to the map at once (paper: on region entry).
+  const Pose2 submap_before = submap_pose_;
+  RegistrationResult result;
+  int frame = -1;
+  const bool aligned = SecondRegistration(&result, &frame);
+  if (absence < config_.back_end.loop_min_path_m || anchor_region_ < 0 || !config_.back_end.enable) {
+    anchor_region_ = region;  // back after a short detour
+    lost_in_region_ = false;
+    return;
+  }
+  // Back after a loop. Aligned to this map alone: that is a closure for the graph too. Otherwise
+  // the drift may be past the PLICP basin: a search. Without either, the robot does not know
+  // where it is in this map, and its scans stay out of it until a retry succeeds or it reaches a
+  // new region.
+  if (aligned && frame == region) {
+    if (back_end_.AddClosure(regions_.maps(), region, anchor_region_, result, submap_before)) {
+      submap_pose_ = regions_[region].anchor * result.pose;
+      reference_maps_[0] = reference_maps_[1] = -1;
+    }
+    anchor_region_ = region;
+    lost_in_region_ = false;
+    return;
+  }
+  lost_in_region_ = !TryLoopClosure(anchor_region_);
+  if (!lost_in_region_) anchor_region_ = region;
+  scans_since_closure_try_ = 0;
+}
+
+void FrontEnd::OnRegionLeft(int left) {
+  if (left >= 0 && left != regions_.current()) back_end_.OnRegionLeft(regions_.maps(), left);
+}
+
+std::size_t FrontEnd::SubmapTarget() {
+  const RegistrationReference& sub = *s_.submap_reference;
+  const std::size_t n = sub.cell_count();
+  if (n == 0) return 0;
+  const std::size_t max_points = static_cast<std::size_t>(config_.front_end.second_registration_max_points);
+  const std::size_t stride = (n + max_points - 1) / max_points;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < n; i += stride) s_.target[count++] = sub.CellCentre(static_cast<std::uint16_t>(i));
+  return count;
+}
+
+bool FrontEnd::TryLoopClosure(int from) {
+  const int region = regions_.current();
+  if (region < 0) return false;
+  path_at_closure_try_ = path_m_;
+  const std::size_t n = SubmapTarget();
+  const float path = path_m_ - regions_[region].path_at_last_scan_m;
+  const LoopClosureResult r =
+      back_end_.TryLoopClosure(regions_.maps(), region, from, Span<const Point2>(s_.target.data(), n), submap_pose_, path);
+  if (r.used_reference) reference_maps_[0] = reference_maps_[1] = -1;
+  if (r.verdict != Status::kOk) return false;
+  // The anchors have moved (the graph took the closure); the submap belongs where it was found.
+  submap_pose_ = regions_[region].anchor * r.submap_in_region;
+  reference_maps_[0] = reference_maps_[1] = -1;
+  return true;
+}
+
+void FrontEnd::StepBackEnd() {
+  const int current = regions_.current();
+  const Pose2 before = current >= 0 ? regions_[current].anchor : Pose2::Identity();
+  const BackEnd::StepResult r = back_end_.Step(regions_.maps());
+  if (r.used_reference || r.anchors_moved) reference_maps_[0] = reference_maps_[1] = -1;
+  // The robot, its submap and the current region move together with the current vertex.
+  if (r.anchors_moved && current >= 0) submap_pose_ = regions_[current].anchor * before.Inverse() * submap_pose_;
 }
 
 void FrontEnd::UpdateStatus() {

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 
+#include "core/back_end/back_end.hpp"
 #include "core/base/stage.hpp"
 #include "core/config.hpp"
 #include "core/front_end/odometry_buffer.hpp"
@@ -49,11 +50,13 @@ struct FrontEndStorage {
   Span<Point2> target;     // second-registration target points (submap obstacle cells)
   Span<CellIndex> scratch;  // the RegionSet's InsertRays scratch, kMaxBeams
   Span<Correspondence> correspondences;  // registration scratch, kMaxBeams
+  BackEndStorage back_end;
 };
 
 class FrontEnd {
  public:
-  explicit FrontEnd(const FrontEndStorage& storage) : s_(storage), regions_(storage.regions, storage.scratch) {}
+  explicit FrontEnd(const FrontEndStorage& storage)
+      : s_(storage), regions_(storage.regions, storage.scratch), back_end_(storage.back_end) {}
   FrontEnd(const FrontEnd&) = delete;
   FrontEnd& operator=(const FrontEnd&) = delete;
 
@@ -69,6 +72,11 @@ class FrontEnd {
   int region_count() const { return regions_.size(); }
   const RegionalMap& region(int i) const { return regions_[i]; }
   bool registration_enabled() const { return config_.front_end.enable_registration; }
+  const BackEnd& back_end() const { return back_end_; }
+  // Where the last scan went: its regional map (-1: none, e.g. a full pool) and the robot's pose
+  // in that map's frame. Its world pose after later optimisations is the map's anchor times it.
+  int last_scan_region() const { return last_scan_region_; }
+  const Pose2& last_scan_in_region() const { return last_scan_in_region_; }
 
  private:
   // Stages (budgeted): prediction = Predict + ProjectScan; first registration = RegisterScan;
@@ -78,17 +86,26 @@ class FrontEnd {
   DPCR_STAGE Pose2 Predict(std::int64_t stamp_us);
   DPCR_STAGE void RegisterScan(std::size_t hits, const Pose2& predicted);
   DPCR_STAGE void BuildRegionReference(const int (&maps)[2], int n);
-  DPCR_STAGE void RegisterSubmap(RegionalMap& r);
+  DPCR_STAGE RegistrationResult RegisterSubmap(RegionalMap& r);
   void InsertIntoRegion(const ProjectedScan& projected);
   void RebuildSubmapReferenceIfDue();
   DPCR_STAGE void RefitSubmapLines();
   void EnterRegion(bool first);
-  void SecondRegistration();
+  // The second registration; `result` (optional) gets the registration's answer when one ran,
+  // and `region` the map whose frame it is in. True when accepted.
+  bool SecondRegistration(RegistrationResult* result = nullptr, int* region = nullptr);
   // The regional maps the second registration aligns to (1 or 2; 0: none yet); the first one's
   // frame is the registration's frame.
   int ReferenceMaps(int (&maps)[2]) const;
   bool WellInside(const RegionalMap& r) const;
   void UpdateStatus();
+  // Back end: the region just left, a loop closure on re-entry, one queued job per scan.
+  void OnRegionLeft(int left);
+  void EnterKnownRegion();
+  bool TryLoopClosure(int from);
+  void StepBackEnd();
+  // The submap's obstacle cells (from its reference), thinned to the target capacity.
+  std::size_t SubmapTarget();
 
   FrontEndStorage s_;
   MapperConfig config_;
@@ -110,6 +127,17 @@ class FrontEnd {
   // Second registrations since region_reference was built (each one Ks scans apart).
   std::uint32_t second_registrations_since_region_lines_ = 0;
   ScanMarker scan_marker_;
+  BackEnd back_end_;
+  float path_m_ = 0.0f;  // length of the robot's path so far (world frame)
+  Pose2 last_world_;
+  int last_scan_region_ = -1;
+  // The regional map the robot's pose is known in: the one it is in, or, after entering a known
+  // map it could not place itself in (lost_in_region_), the last one it could.
+  int anchor_region_ = -1;
+  bool lost_in_region_ = false;
+  std::uint32_t scans_since_closure_try_ = 0;
+  float path_at_closure_try_ = 0.0f;
+  Pose2 last_scan_in_region_;
 };
 
 }  // namespace dpcr

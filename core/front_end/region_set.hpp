@@ -51,6 +51,8 @@ class RegionSet {
                                        std::uint32_t marker);
 
   int size() const { return size_; }
+  // The maps made so far (the back end's vertices, in creation order).
+  Span<RegionalMap> maps() const { return Span<RegionalMap>(maps_.data(), static_cast<std::size_t>(size_)); }
   RegionalMap& operator[](int i) { return maps_[static_cast<std::size_t>(i)]; }
   const RegionalMap& operator[](int i) const { return maps_[static_cast<std::size_t>(i)]; }
   // Index of the map of region `key`, -1 if it has none.

@@ -15,6 +15,9 @@ struct RegionalMap {
   Pose2 anchor;              // the map's frame in the world; the back end moves it
   TiledGrid* grid = nullptr;  // points into the Mapper's storage
   std::uint32_t scans_inserted = 0;
+  // The robot's path length (FrontEnd::path_m) when a scan last went into this map: on
+  // re-entry, the path since then bounds the drift a loop closure has to find.
+  float path_at_last_scan_m = 0.0f;
 };
 
 }  // namespace dpcr

@@ -120,6 +120,7 @@ int ReplayCarmen(const Options& opt) {
   if (!opt.relations.empty()) run.relations = &relations;
 
   std::filesystem::create_directories(opt.out);
+  dpcr::output::FinalizeTrajectory(mapper, &run);
   nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
   const auto& rc = reader.counters();
   metrics["input"] = {{"file", opt.carmen}, {"laser_records", rc.laser_records}, {"odom_records", rc.odom_records},
@@ -159,6 +160,7 @@ int ReplayDevice(const Options& opt) {
   if (run.estimate.empty()) throw std::runtime_error(opt.uart + ": no complete lidar revolution decoded");
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   std::filesystem::create_directories(opt.out);
+  dpcr::output::FinalizeTrajectory(mapper, &run);
   nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
   const auto c = replay.counters();
   metrics["input"] = {{"uart", opt.uart}, {"candump", opt.candump}, {"lidar", opt.lidar},

@@ -79,6 +79,7 @@ int Run(const Options& opt) {
     run.ground_truth.swap(gt_in_map);
   }
   std::filesystem::create_directories(opt.out);
+  dpcr::output::FinalizeTrajectory(mapper, &run);
   nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
   metrics["input"] = {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed},
                       {"slip_events", sim.slip_events()}, {"coverage_tours", sim.tours_completed()}};

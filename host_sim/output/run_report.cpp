@@ -1,5 +1,7 @@
 #include "host_sim/output/run_report.hpp"
 
+#include <cstdlib>
+
 #include <algorithm>
 #include <fstream>
 #include <stdexcept>
@@ -19,6 +21,11 @@ void WriteTumFile(const std::string& path, const dpcr::eval::Trajectory& t) {
   if (!out) throw std::runtime_error(path + ": cannot open for writing");
   dpcr::eval::WriteTum(out, t);
   if (!out) throw std::runtime_error(path + ": write failed");
+}
+
+nlohmann::json RelationsJson(const dpcr::eval::RelationsResult& r) {
+  return {{"trans_mean_m", r.trans_mean_m}, {"trans_std_m", r.trans_std_m}, {"rot_mean_deg", r.rot_mean_deg},
+          {"rot_std_deg", r.rot_std_deg},   {"matched", r.matched},         {"unmatched", r.unmatched}};
 }
 
 }  // namespace
@@ -42,10 +49,16 @@ nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, cons
   }
   if (run.relations != nullptr) {
     const auto r = dpcr::eval::EvaluateRelations(run.estimate, *run.relations);
-    metrics["relations"] = {{"trans_mean_m", r.trans_mean_m}, {"trans_std_m", r.trans_std_m},
-                            {"rot_mean_deg", r.rot_mean_deg}, {"rot_std_deg", r.rot_std_deg},
-                            {"matched", r.matched}, {"unmatched", r.unmatched}};
+    metrics["relations"] = RelationsJson(r);
+    // Split at 10 s apart: local accuracy (front end) and global consistency (back end).
+    std::vector<dpcr::eval::Relation> near, far;
+    for (const auto& rel : *run.relations) (std::llabs(rel.t2_us - rel.t1_us) < 10'000'000 ? near : far).push_back(rel);
+    metrics["relations"]["under_10s"] = RelationsJson(dpcr::eval::EvaluateRelations(run.estimate, near));
+    metrics["relations"]["over_10s"] = RelationsJson(dpcr::eval::EvaluateRelations(run.estimate, far));
   }
+  metrics["backend"]["calls"] = run.backend_calls;
+  metrics["backend"]["total_ms"] = run.backend_total_ms;
+  metrics["backend"]["max_ms"] = run.backend_max_ms;
   std::ofstream out(dir + "/metrics.json");
   out << metrics.dump(2) << "\n";
   if (!out) throw std::runtime_error(dir + "/metrics.json: write failed");

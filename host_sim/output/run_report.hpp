@@ -19,15 +19,50 @@ struct RunRecord {
   std::vector<double> per_scan_ms;          // time inside Mapper::AddScan, one per scan
   const std::vector<dpcr::eval::Relation>* relations = nullptr;  // with --relations
   double wall_seconds = 0.0;                // the whole run, parsing included
+  // Per scan: the regional map it went into (-1: none) and the robot's pose in that map's frame,
+  // so that the trajectory follows the back end's later corrections (FinalizeTrajectory).
+  std::vector<int> scan_region;
+  std::vector<dpcr::Pose2> scan_in_region;
+  // AddScan calls in which the back end worked (a queued job or a loop-closure search), and the
+  // time they took (front end included: the core has no clock of its own).
+  int backend_calls = 0;
+  double backend_total_ms = 0.0;
+  double backend_max_ms = 0.0;
 };
+
+// The back end's work counted so far (jobs and searches): a change across a call means it worked.
+template <class MapperType>
+std::uint64_t BackEndWork(const MapperType& mapper) {
+  const auto& b = mapper.back_end().counters();
+  return std::uint64_t{b.optimizations} + b.map_match_attempts + b.loop_searches;
+}
 
 // Feeds one scan to the mapper, timing only the core's work, and records the pose it gives.
 template <class MapperType>
 void AddTimedScan(MapperType& mapper, const typename MapperType::ScanType& scan, RunRecord* run) {
+  const std::uint64_t work = BackEndWork(mapper);
   const auto t0 = std::chrono::steady_clock::now();
   (void)mapper.AddScan(scan);
-  run->per_scan_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  run->per_scan_ms.push_back(ms);
   run->estimate.push_back({scan.stamp_us, mapper.pose()});
+  run->scan_region.push_back(mapper.last_scan_region());
+  run->scan_in_region.push_back(mapper.last_scan_in_region());
+  if (BackEndWork(mapper) != work) {
+    ++run->backend_calls;
+    run->backend_total_ms += ms;
+    run->backend_max_ms = ms > run->backend_max_ms ? ms : run->backend_max_ms;
+  }
+}
+
+// At the end of a run: each scan's pose becomes its map's final anchor times its pose in the map
+// (the globally consistent trajectory, as the maps are); scans in no map keep their online pose.
+template <class MapperType>
+void FinalizeTrajectory(const MapperType& mapper, RunRecord* run) {
+  for (std::size_t i = 0; i < run->estimate.size() && i < run->scan_region.size(); ++i) {
+    const int r = run->scan_region[i];
+    if (r >= 0 && r < mapper.region_count()) run->estimate[i].pose = mapper.region_anchor(r) * run->scan_in_region[i];
+  }
 }
 
 // Writes the files; returns metrics.json's content. Throws std::runtime_error on I/O errors.
@@ -48,7 +83,21 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
   j["static_ram_bytes"] = sizeof(MapperType);
   j["map_storage_bytes"] = mapper.map_storage_bytes();
   j["tiles_used"] = mapper.tiles_used();
-  j["backend"] = {{"runs", 0}, {"total_ms", 0.0}, {"max_ms", 0.0}};
+  const auto& b = mapper.back_end().counters();
+  j["backend"] = {{"runs", b.optimizations},
+                  {"optimizer_iterations", b.optimizer_iterations},
+                  {"vertices", mapper.back_end().graph().vertex_count()},
+                  {"edges", mapper.back_end().graph().edge_count()},
+                  {"sequence_edges", b.sequence_edges},
+                  {"map_match_attempts", b.map_match_attempts},
+                  {"map_match_edges", b.map_match_edges},
+                  {"loop_searches", b.loop_searches},
+                  {"loop_closures_accepted", b.loop_closures_accepted},
+                  {"loop_closures_rejected", b.loop_closures_rejected},
+                  {"loop_closures_inconsistent", b.loop_closures_inconsistent},
+                  {"downweighted_edges", b.downweighted_edges},
+                  {"edges_dropped_full", b.edges_dropped_full},
+                  {"jobs_dropped_full", b.jobs_dropped_full}};
   j["counters"] = {{"scans_without_odometry", c.scans_without_odometry},
                    {"odometry_samples", c.odometry_samples},
                    {"odometry_steps_back", c.odometry_steps_back},
@@ -56,7 +105,8 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                    {"regions_created", c.regions_created},
                    {"region_pool_full", c.region_pool_full},
                    {"updates_out_of_box", c.updates_out_of_box},
-                   {"updates_dropped_pool_full", c.updates_dropped_pool_full}};
+                   {"updates_dropped_pool_full", c.updates_dropped_pool_full},
+                   {"scans_not_inserted", c.scans_not_inserted}};
   const auto& f = mapper.front_end_counters();
   j["front_end"] = {{"first_registrations", f.first_registrations}, {"first_rejected", f.first_rejected},
                     {"second_registrations", f.second_registrations}, {"second_rejected", f.second_rejected},

@@ -88,3 +88,36 @@ TEST_CASE("The correlative search refuses twin rooms and corridors") {
     REQUIRE(r.verdict == dpcr::Status::kRejected);
   }
 }
+
+TEST_CASE("Branch and bound scores the same best pose as scoring every pose") {
+  Setup s(Room());
+  const Pose2 truth{6.2f, 3.1f, -0.3f};
+  const auto cloud = Cloud(Room(), truth);
+  const Pose2 guess{truth.x - 0.45f, truth.y + 0.3f, truth.theta + 0.05f};
+  const dpcr::CorrelativeSearchResult r = s.Search(cloud, guess, 0.8f, 0.1f);
+  // Brute force over the same lattice of poses (the search's angle step rule, whole match cells).
+  float max_range = 1.0f;
+  for (const Point2& p : cloud) max_range = std::fmax(max_range, std::hypot(p.x, p.y));
+  const dpcr::CorrelativeSearchConfig config;
+  const float step = std::fmin(std::fmax(s.grid->resolution_m() / max_range, config.min_angle_step_rad), config.max_angle_step_rad);
+  const int n_angles = static_cast<int>(0.1f / step), n_offsets = static_cast<int>(0.8f / s.grid->resolution_m());
+  std::uint32_t best = 0;
+  for (int a = -n_angles; a <= n_angles; ++a) {
+    const dpcr::PointTransform t(Pose2{guess.x, guess.y, guess.theta + static_cast<float>(a) * step});
+    for (int oy = -n_offsets; oy <= n_offsets; ++oy) {
+      for (int ox = -n_offsets; ox <= n_offsets; ++ox) {
+        std::uint32_t sum = 0;
+        for (const Point2& p : cloud) {
+          const Point2 w = t(p);
+          sum += s.grid->AtCell(dpcr::FloorToInt((w.x - s.grid->origin().x) / s.grid->resolution_m()) + ox,
+                                dpcr::FloorToInt((w.y - s.grid->origin().y) / s.grid->resolution_m()) + oy);
+        }
+        best = sum > best ? sum : best;
+      }
+    }
+  }
+  REQUIRE(r.score == Approx(static_cast<float>(best) / (255.0f * static_cast<float>(cloud.size()))).epsilon(1e-5));
+  // And it scored far fewer poses than the lattice holds.
+  const std::uint32_t lattice = static_cast<std::uint32_t>((2 * n_angles + 1) * (2 * n_offsets + 1) * (2 * n_offsets + 1));
+  REQUIRE(r.poses_evaluated < lattice);
+}

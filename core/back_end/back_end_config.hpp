@@ -1,0 +1,63 @@
+// The back end's parameters (core/back_end/back_end.hpp), part of MapperConfig.
+#pragma once
+
+#include "core/back_end/correlative_search.hpp"
+#include "core/back_end/pose_graph.hpp"
+#include "core/registration/plicp.hpp"
+
+namespace dpcr {
+
+// PLICP for maps and closures: two maps overlap only in part, so the inlier ratio may be low;
+// MatchRate (Eq. 11) and the residual decide.
+constexpr PlicpConfig MapRegistrationConfig() {
+  PlicpConfig c;
+  c.min_inlier_ratio = 0.25f;
+  return c;
+}
+
+struct BackEndConfig {
+  bool enable = true;
+  // Map-to-map edges (paper Eqs. 10-11): regions whose anchors are within alpha S, both holding
+  // at least `min_scans` scans, registered with a MatchRate of at least `min_match_rate`.
+  float neighbour_factor = 1.5f;
+  int min_scans = 20;
+  float min_match_rate = 0.3f;
+  int max_cloud_points = 600;
+  // Information of a registration edge: the PLICP Hessian of unit-weight residuals, divided by
+  // the residual variance and by how many neighbouring points a wall's residuals share (cells of
+  // one wall are not independent measurements), plus a floor so that every direction is weakly
+  // held (a corridor edge stays weak along the corridor).
+  float residual_sigma_m = 0.03f;
+  float correlated_points = 400.0f;
+  float floor_sigma_m = 1.0f;
+  float floor_sigma_rad = 0.3f;
+  // The front end's chain between a region and the one it was created from.
+  float sequence_sigma_m = 0.05f;
+  float sequence_sigma_rad = 0.01f;
+  // Loop closures: tried on entering a map the robot left at least this path ago (shorter
+  // detours: the second registration as usual), and every `loop_retry_scans` scans after a
+  // failure while the robot stays in that map, once it has moved `loop_retry_path_m` since the last try.
+  float loop_min_path_m = 8.0f;
+  int loop_retry_scans = 10;
+  float loop_retry_path_m = 1.0f;
+  // The search window grows with the path since the robot last registered
+  // against the re-entered map (front-end drift), up to a limit.
+  float search_base_m = 0.3f;
+  float search_per_metre_m = 0.03f;
+  float search_max_m = 2.5f;
+  float search_base_rad = 0.05f;
+  float search_per_metre_rad = 0.002f;
+  float search_max_rad = 0.35f;
+  int search_points = 200;
+  int match_grid_coarsen = 2;  // match cells of 2 x 2 grid cells (10 cm)
+  CorrelativeSearchConfig search;
+  // Map-to-map registrations; the refinement of a closure (the submap lies inside the map it
+  // re-enters, so the usual inlier ratio holds).
+  PlicpConfig registration = MapRegistrationConfig();
+  PlicpConfig closure_registration;
+  // A closure is kept only if, optimised with it, no edge's chi2 exceeds this (pose_graph.hpp).
+  float max_edge_chi2 = 25.0f;
+  PoseGraphConfig optimizer;
+};
+
+}  // namespace dpcr
