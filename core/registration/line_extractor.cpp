@@ -190,8 +190,9 @@ void ComputeLocalNormals(Span<ObstacleCell> cells, const std::uint16_t* cell_at,
 
 namespace {
 
-// A cell of the component being collected, not yet owned by a line.
+// ObstacleCell::line of a cell of the component being collected, not yet owned by a line.
 constexpr std::uint16_t kVisited = kNoLine - 1;
+static_assert(kMaxLinesPerExtraction <= kVisited, "line ids stay below the markers");
 
 // Step 1: the connected component of `seed` (cells within link_radius_cells), breadth first,
 // appended to perm from `end` on (perm itself is the queue); its cells are marked kVisited.

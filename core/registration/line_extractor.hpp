@@ -14,8 +14,12 @@
 
 namespace dpcr {
 
-constexpr std::uint16_t kNoLine = 0xFFFF;
+// Obstacle cells and line features are numbered by 16-bit ids whose top values are markers.
+// No obstacle cell: in a cell_at table, as a nearest-cell answer, in a correspondence.
 constexpr std::uint16_t kNoCell = 0xFFFF;
+// No line feature: ObstacleCell::line of clutter. Cell ids and line ids never meet in one
+// variable, so the two markers sharing a value means nothing; no code relies on it.
+constexpr std::uint16_t kNoLine = 0xFFFF;
 
 struct ObstacleCell {
   std::int16_t x = 0;  // window-local cell coordinates

@@ -113,7 +113,7 @@ void RegistrationReference::AddGrid(const TiledGrid& grid, CellIndex offset, con
           // Q10 log-odds / 64: up to 511 for an unclamped submap sum, 56 at the regional clamp.
           const std::uint16_t weight = config.weight_by_evidence ? static_cast<std::uint16_t>(1 + (v >> 6)) : 1;
           std::uint16_t& entry = nearest_[static_cast<std::size_t>(y * w_ + x)];
-          if (entry != kNoCell) {  // already an obstacle cell of an earlier grid: one cell, the larger weight
+          if (entry != kNotSearched) {  // already an obstacle cell of an earlier grid: one cell, the larger weight
             if (weight > cells_[entry].weight) cells_[entry].weight = weight;
             continue;
           }

@@ -94,9 +94,13 @@ class RegistrationReference {
   float resolution_m() const { return res_; }
 
  private:
-  // Table entries besides cell indices: not searched yet (every entry but the obstacle cells'
-  // after a build, which hold their own index), and searched with no obstacle cell in the bound.
-  static constexpr std::uint16_t kNotSearched = kNoCell;
+  // Table entries besides cell indices. Not searched yet: every entry but the obstacle cells'
+  // after a build, which hold their own index. While a build runs the table is also the cell_at
+  // table of ComputeLocalNormals and ExtractLines (a cell's index, kNoCell elsewhere), and AddGrid
+  // finds an earlier grid's cell by it: "not searched" must read as "no obstacle cell here".
+  static constexpr std::uint16_t kNotSearched = 0xFFFF;
+  static_assert(kNotSearched == kNoCell, "during a build the table is the line extractor's cell_at table");
+  // Searched, with no obstacle cell within the bound.
   static constexpr std::uint16_t kNoneNear = 0xFFFE;
   // Obstacle cells are also marked in 8 x 8-cell blocks, one bit per cell (bit 8 * ly + lx), and
   // the blocks holding any in one bit per block of a row of blocks (windows up to 512 cells).
@@ -135,7 +139,7 @@ class RegistrationReference {
 // refit to and carries none).
 template <int kW, int kH, int kCells, int kLines, bool kPointRefit = true>
 class RegistrationReferenceStorage : public RegistrationReference {
-  static_assert(kCells < kNoCell - 1, "cell ids are 16-bit, two values are markers");
+  static_assert(kCells < 0xFFFE, "cell ids are 16-bit below the table's two markers (kNoneNear, kNotSearched)");
   static constexpr int kBlocks = ((kW + 7) / 8) * ((kH + 7) / 8);
 
  public:
