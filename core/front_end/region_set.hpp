@@ -10,6 +10,7 @@
 #include "core/base/stage.hpp"
 #include "core/config.hpp"
 #include "core/front_end/region_tracker.hpp"
+#include "core/front_end/regional_map.hpp"
 #include "core/front_end/submap.hpp"
 #include "core/geometry/pose2.hpp"
 #include "core/grid/ray_caster.hpp"
@@ -17,13 +18,6 @@
 #include "core/grid/tiled_grid.hpp"
 
 namespace dpcr {
-
-struct RegionalMap {
-  RegionKey key;
-  Pose2 anchor;               // the map's frame in the world; the back end moves it
-  TiledGrid* grid = nullptr;  // points into the Mapper's storage
-  std::uint32_t scans_inserted = 0;
-};
 
 class RegionSet {
  public:

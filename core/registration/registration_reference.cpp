@@ -112,26 +112,62 @@ void RegistrationReference::AddGrid(const TiledGrid& grid, CellIndex offset, con
           if (v <= config.obstacle_threshold) continue;  // kUnknownCell included
           // Q10 log-odds / 64: up to 511 for an unclamped submap sum, 56 at the regional clamp.
           const std::uint16_t weight = config.weight_by_evidence ? static_cast<std::uint16_t>(1 + (v >> 6)) : 1;
-          std::uint16_t& entry = nearest_[static_cast<std::size_t>(y * w_ + x)];
-          if (entry != kNotSearched) {  // already an obstacle cell of an earlier grid: one cell, the larger weight
-            if (weight > cells_[entry].weight) cells_[entry].weight = weight;
-            continue;
-          }
-          if (cell_count_ == cells_.size()) {
-            ++stats->dropped_cells;
-            continue;
-          }
-          ObstacleCell& c = cells_[cell_count_];
-          c = ObstacleCell{};
-          c.x = static_cast<std::int16_t>(x);
-          c.y = static_cast<std::int16_t>(y);
-          c.weight = weight;
-          entry = static_cast<std::uint16_t>(cell_count_++);
-          written_blocks_[y >> kBlockShift] |= std::uint64_t{1} << (x >> kBlockShift);
-          obstacle_blocks_[static_cast<std::size_t>((y >> kBlockShift) * blocks_x_ + (x >> kBlockShift))] |=
-              std::uint64_t{1} << (((y & 7) << 3) | (x & 7));
-          occupied_blocks_[y >> kBlockShift] |= std::uint64_t{1} << (x >> kBlockShift);
+          AddObstacleCell(x, y, weight, stats);
         }
+      }
+    }
+  }
+  stats->obstacle_cells = static_cast<int>(cell_count_);
+}
+
+void RegistrationReference::AddObstacleCell(int x, int y, std::uint16_t weight, ReferenceBuildStats* stats) {
+  std::uint16_t& entry = nearest_[static_cast<std::size_t>(y * w_ + x)];
+  if (entry != kNotSearched) {  // already an obstacle cell of an earlier grid: one cell, the larger weight
+    if (weight > cells_[entry].weight) cells_[entry].weight = weight;
+    return;
+  }
+  if (cell_count_ == cells_.size()) {
+    ++stats->dropped_cells;
+    return;
+  }
+  ObstacleCell& c = cells_[cell_count_];
+  c = ObstacleCell{};
+  c.x = static_cast<std::int16_t>(x);
+  c.y = static_cast<std::int16_t>(y);
+  c.weight = weight;
+  entry = static_cast<std::uint16_t>(cell_count_++);
+  written_blocks_[y >> kBlockShift] |= std::uint64_t{1} << (x >> kBlockShift);
+  obstacle_blocks_[static_cast<std::size_t>((y >> kBlockShift) * blocks_x_ + (x >> kBlockShift))] |=
+      std::uint64_t{1} << (((y & 7) << 3) | (x & 7));
+  occupied_blocks_[y >> kBlockShift] |= std::uint64_t{1} << (x >> kBlockShift);
+}
+
+void RegistrationReference::AddPlacedGrid(const TiledGrid& grid, const Pose2& grid_in_window, const ReferenceConfig& config,
+                                          ReferenceBuildStats* stats) {
+  // On the window's lattice (no rotation, a whole number of cells away): the exact cell shift.
+  const float fx = grid_in_window.x * inv_res_, fy = grid_in_window.y * inv_res_;
+  const float rx = std::round(fx), ry = std::round(fy);
+  if (grid_in_window.theta == 0.0f && std::fabs(fx - rx) < 1e-3f && std::fabs(fy - ry) < 1e-3f) {
+    AddGrid(grid, CellIndex{static_cast<std::int32_t>(rx), static_cast<std::int32_t>(ry)}, config, stats);
+    return;
+  }
+  // Otherwise each obstacle cell's centre is carried into the window's frame and lands in the
+  // cell containing it (a rotated map's walls stay one cell thick, at most half a cell off).
+  const PointTransform to_window(grid_in_window);
+  const CellBox box = grid.box();
+  for (int ty = 0; ty < grid.tiles_y(); ++ty) {
+    for (int tx = 0; tx < grid.tiles_x(); ++tx) {
+      const TileId id = grid.tile_at(tx, ty);
+      if (id == kNoTile) continue;
+      const std::int16_t* values = grid.pool()[id].cells;
+      for (int i = 0; i < kTileCells; ++i) {
+        const std::int16_t v = values[i];
+        if (v <= config.obstacle_threshold) continue;  // kUnknownCell included
+        const CellIndex local{box.min.x + tx * kTileSide + (i % kTileSide), box.min.y + ty * kTileSide + (i / kTileSide)};
+        const Point2 p = to_window(Point2{CellCentreX(local, res_), CellCentreY(local, res_)});
+        const int x = FloorToInt(p.x * inv_res_) - window_min_.x, y = FloorToInt(p.y * inv_res_) - window_min_.y;
+        if (x < 0 || y < 0 || x >= w_ || y >= h_) continue;
+        AddObstacleCell(x, y, config.weight_by_evidence ? static_cast<std::uint16_t>(1 + (v >> 6)) : 1, stats);
       }
     }
   }

@@ -58,6 +58,10 @@ class RegistrationReference {
   void BeginBuild(CellBox window, float resolution_m);
   void AddGrid(const TiledGrid& grid, CellIndex offset, const ReferenceConfig& config, ReferenceBuildStats* stats);
   Status FinishBuild(const ReferenceConfig& config, ReferenceBuildStats* stats);
+  // AddGrid for a grid placed anywhere: `grid_in_window` is its frame in the window grid's frame
+  // (anchors the back end has moved or rotated). The exact AddGrid when it is a whole-cell shift.
+  void AddPlacedGrid(const TiledGrid& grid, const Pose2& grid_in_window, const ReferenceConfig& config,
+                     ReferenceBuildStats* stats);
 
   // Sub-cell refit (after Build): every line is refitted to the raw points near it, so that its
   // position is not the grid's quantisation of the wall (up to half a cell per wall, which
@@ -96,7 +100,7 @@ class RegistrationReference {
  private:
   // Table entries besides cell indices. Not searched yet: every entry but the obstacle cells'
   // after a build, which hold their own index. While a build runs the table is also the cell_at
-  // table of ComputeLocalNormals and ExtractLines (a cell's index, kNoCell elsewhere), and AddGrid
+  // table of ComputeLocalNormals and ExtractLines (a cell's index, kNoCell elsewhere), and AddObstacleCell
   // finds an earlier grid's cell by it: "not searched" must read as "no obstacle cell here".
   static constexpr std::uint16_t kNotSearched = 0xFFFF;
   static_assert(kNotSearched == kNoCell, "during a build the table is the line extractor's cell_at table");
@@ -111,6 +115,8 @@ class RegistrationReference {
   std::uint16_t Search(int x, int y) const;
   // Resets what the last build and its searches wrote: table entries, obstacle blocks.
   void ClearWritten();
+  // Window cell (x, y) becomes an obstacle cell (or keeps the larger weight if it is one).
+  inline void AddObstacleCell(int x, int y, std::uint16_t weight, ReferenceBuildStats* stats);
 
   Span<ObstacleCell> cells_;
   // A cache that Search fills, also through a const reference (queries are single-threaded).

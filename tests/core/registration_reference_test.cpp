@@ -139,3 +139,36 @@ TEST_CASE("A reference over two grids shifts the second one's cells and merges s
   REQUIRE(ref.cell_count() > a_cells);
   REQUIRE(ref.line_count() == static_cast<std::size_t>(single.lines) + 2);
 }
+
+TEST_CASE("A reference over a rotated grid carries its walls into the window's frame") {
+  GridFixture a, b;
+  a.Draw(Segment{{2.0f, 1.0f}, {2.0f, 6.0f}});
+  // b holds a wall along its own x axis (y = 3 m, x from 1 to 6 m); placed at 90 degrees about
+  // (8, 0) it becomes a vertical wall at x = 8 - 3 = 5 m, y from 1 to 6 m in a's frame.
+  b.Draw(Segment{{1.0f, 3.0f}, {6.0f, 3.0f}});
+  dpcr::RegistrationReference& ref = *a.ref;
+  dpcr::ReferenceBuildStats st;
+  ref.BeginBuild(a.grid->box(), 0.05f);
+  ref.AddPlacedGrid(*a.grid, dpcr::Pose2{}, dpcr::ReferenceConfig{}, &st);
+  const std::size_t a_cells = ref.cell_count();
+  ref.AddPlacedGrid(*b.grid, dpcr::Pose2{8.0f, 0.0f, dpcr::kPi / 2}, dpcr::ReferenceConfig{}, &st);
+  REQUIRE(ref.FinishBuild(dpcr::ReferenceConfig{}, &st) == dpcr::Status::kOk);
+  REQUIRE(ref.cell_count() > a_cells + 80);
+  REQUIRE(ref.line_count() == 2);
+  bool found_vertical_at_5 = false;
+  for (std::uint16_t i = 0; i < ref.line_count(); ++i) {
+    const dpcr::LineFeature& l = ref.line(i);
+    if (std::fabs(std::fabs(l.normal.x) - 1.0f) < 0.01f && std::fabs(std::fabs(l.offset) - 4.975f) < 0.04f) {
+      found_vertical_at_5 = true;
+    }
+  }
+  REQUIRE(found_vertical_at_5);
+  // A whole-cell shift without rotation takes AddGrid's exact path: the same cells as AddGrid.
+  dpcr::ReferenceBuildStats s1, s2;
+  ref.BeginBuild(a.grid->box(), 0.05f);
+  ref.AddPlacedGrid(*b.grid, dpcr::Pose2{0.5f, -0.25f, 0.0f}, dpcr::ReferenceConfig{}, &s1);
+  const std::size_t placed = ref.cell_count();
+  ref.BeginBuild(a.grid->box(), 0.05f);
+  ref.AddGrid(*b.grid, dpcr::CellIndex{10, -5}, dpcr::ReferenceConfig{}, &s2);
+  REQUIRE(ref.cell_count() == placed);
+}

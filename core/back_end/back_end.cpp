@@ -1,0 +1,231 @@
+#include "core/back_end/back_end.hpp"
+
+#include <cmath>
+
+#include "core/back_end/region_cloud.hpp"
+#include "core/base/assert.hpp"
+
+namespace dpcr {
+namespace {
+
+float Clamp(float v, float hi) { return v < hi ? v : hi; }
+
+// Rotates an information matrix over a pose's (x, y, theta) perturbation in the `from` frame into
+// the frame of the edge error e = Z^-1 (Xi^-1 Xj) (its translation is in the measured `to` frame).
+Eigen::Matrix3f IntoErrorFrame(const Eigen::Matrix3f& information, const Pose2& measurement) {
+  Eigen::Matrix3f m = Eigen::Matrix3f::Identity();
+  const float c = std::cos(measurement.theta), s = std::sin(measurement.theta);
+  m(0, 0) = c;
+  m(0, 1) = -s;
+  m(1, 0) = s;
+  m(1, 1) = c;
+  return m.transpose() * information * m;
+}
+
+}  // namespace
+
+void BackEnd::Init(const BackEndConfig& config, float region_width_m, std::int16_t obstacle_threshold) {
+  config_ = config;
+  region_width_m_ = region_width_m;
+  obstacle_threshold_ = obstacle_threshold;
+  counters_ = BackEndCounters{};
+  s_.graph->Clear();
+  job_head_ = job_count_ = 0;
+}
+
+void BackEnd::Push(std::int32_t job) {
+  const int capacity = static_cast<int>(s_.jobs.size());
+  if (job_count_ == capacity) {
+    ++counters_.jobs_dropped_full;
+    return;
+  }
+  s_.jobs[static_cast<std::size_t>((job_head_ + job_count_) % capacity)] = job;
+  ++job_count_;
+}
+
+void BackEnd::AddRegion(Span<RegionalMap> regions, int index, int from) {
+  PoseGraph& g = *s_.graph;
+  if (!config_.enable || index != g.vertex_count()) return;
+  if (g.AddVertex(regions[static_cast<std::size_t>(index)].anchor) != Status::kOk) return;
+  if (from < 0) return;
+  GraphEdge e;
+  e.from = from;
+  e.to = index;
+  e.measurement = Between(regions[static_cast<std::size_t>(from)].anchor, regions[static_cast<std::size_t>(index)].anchor);
+  const float it = 1.0f / (config_.sequence_sigma_m * config_.sequence_sigma_m);
+  const float ir = 1.0f / (config_.sequence_sigma_rad * config_.sequence_sigma_rad);
+  e.information = Eigen::Vector3f(it, it, ir).asDiagonal();
+  e.kind = EdgeKind::kSequence;
+  if (g.AddOrReplaceEdge(e) == Status::kOk) {
+    ++counters_.sequence_edges;
+  } else {
+    ++counters_.edges_dropped_full;
+  }
+}
+
+void BackEnd::OnRegionLeft(Span<RegionalMap> regions, int index) {
+  if (!config_.enable || index < 0 || index >= s_.graph->vertex_count()) return;
+  const RegionalMap& left = regions[static_cast<std::size_t>(index)];
+  if (left.scans_inserted < static_cast<std::uint32_t>(config_.min_scans)) return;
+  const float reach = config_.neighbour_factor * region_width_m_;
+  for (int i = 0; i < s_.graph->vertex_count(); ++i) {
+    const RegionalMap& other = regions[static_cast<std::size_t>(i)];
+    if (i == index || other.scans_inserted < static_cast<std::uint32_t>(config_.min_scans)) continue;
+    if (std::hypot(other.anchor.x - left.anchor.x, other.anchor.y - left.anchor.y) > reach) continue;
+    const int older = i < index ? i : index, newer = i < index ? index : i;
+    Push(older * kPairBase + newer);
+  }
+  Push(kOptimize);
+}
+
+BackEnd::StepResult BackEnd::Step(Span<RegionalMap> regions) {
+  StepResult out;
+  if (job_count_ == 0) return out;
+  const std::int32_t job = s_.jobs[static_cast<std::size_t>(job_head_)];
+  job_head_ = (job_head_ + 1) % static_cast<int>(s_.jobs.size());
+  --job_count_;
+  if (job == kOptimize) {
+    Optimize(regions);
+    out.anchors_moved = true;
+  } else {
+    (void)MatchMaps(regions, job / kPairBase, job % kPairBase);
+    out.used_reference = true;
+  }
+  return out;
+}
+
+void BackEnd::BuildReference(const RegionalMap& map) {
+  ReferenceConfig reference;
+  reference.obstacle_threshold = obstacle_threshold_;
+  ReferenceBuildStats stats;
+  (void)s_.reference->Build(*map.grid, map.grid->box(), reference, &stats);
+}
+
+Eigen::Matrix3f BackEnd::RegistrationInformation(const RegistrationResult& r, const Pose2& measurement) const {
+  const float scale = 1.0f / (config_.residual_sigma_m * config_.residual_sigma_m * config_.correlated_points);
+  Eigen::Matrix3f info = IntoErrorFrame(r.hessian * scale, measurement);
+  info(0, 0) += 1.0f / (config_.floor_sigma_m * config_.floor_sigma_m);
+  info(1, 1) += 1.0f / (config_.floor_sigma_m * config_.floor_sigma_m);
+  info(2, 2) += 1.0f / (config_.floor_sigma_rad * config_.floor_sigma_rad);
+  return info;
+}
+
+bool BackEnd::MatchMaps(Span<RegionalMap> regions, int older, int newer) {
+  const RegionalMap& ref = regions[static_cast<std::size_t>(older)];
+  const RegionalMap& target = regions[static_cast<std::size_t>(newer)];
+  ++counters_.map_match_attempts;
+  const std::size_t ref_cells = CountObstacleCells(*ref.grid, obstacle_threshold_);
+  const std::size_t target_cells = CountObstacleCells(*target.grid, obstacle_threshold_);
+  const std::size_t n = CollectObstacleCloud(*target.grid, obstacle_threshold_, target_cells,
+                                             Span<Point2>(s_.cloud.data(), static_cast<std::size_t>(config_.max_cloud_points)));
+  if (n < 20 || ref_cells < 20) return false;
+  BuildReference(ref);
+  const Pose2 initial = Between(ref.anchor, target.anchor);
+  const RegistrationResult r = RegisterImproved(*s_.reference, Span<const Point2>(s_.cloud.data(), n), initial, nullptr,
+                                                config_.registration, s_.correspondences);
+  if (r.verdict != Status::kOk) return false;
+  // Eq. 11 on the thinned cloud: matched points over the mean cloud size, both counted at the
+  // thinning of the target (the reference's cells thinned alike).
+  const float thinning = static_cast<float>(n) / static_cast<float>(target_cells);
+  const float match_rate = 2.0f * static_cast<float>(r.inliers) /
+                           (static_cast<float>(n) + thinning * static_cast<float>(ref_cells));
+  if (match_rate < config_.min_match_rate) return false;
+  GraphEdge e;
+  e.from = older;
+  e.to = newer;
+  e.measurement = r.pose;
+  e.information = RegistrationInformation(r, r.pose);
+  e.kind = EdgeKind::kMapMatch;
+  if (s_.graph->AddOrReplaceEdge(e) != Status::kOk) {
+    ++counters_.edges_dropped_full;
+    return false;
+  }
+  ++counters_.map_match_edges;
+  return true;
+}
+
+void BackEnd::Optimize(Span<RegionalMap> regions) {
+  const OptimizationResult r = s_.graph->Optimize(config_.optimizer);
+  if (r.status != Status::kOk) return;
+  ++counters_.optimizations;
+  counters_.optimizer_iterations += static_cast<std::uint32_t>(r.iterations);
+  counters_.downweighted_edges = static_cast<std::uint32_t>(r.downweighted_edges);
+  WriteAnchors(regions);
+}
+
+void BackEnd::WriteAnchors(Span<RegionalMap> regions) const {
+  for (int i = 0; i < s_.graph->vertex_count(); ++i) regions[static_cast<std::size_t>(i)].anchor = s_.graph->vertex(i);
+}
+
+LoopClosureResult BackEnd::TryLoopClosure(Span<RegionalMap> regions, int region, int from, Span<const Point2> cloud,
+                                          const Pose2& submap_world, float path_m) {
+  LoopClosureResult out;
+  PoseGraph& g = *s_.graph;
+  if (!config_.enable || region < 0 || from < 0 || region == from || region >= g.vertex_count() ||
+      from >= g.vertex_count() || cloud.size() < 20) {
+    return out;
+  }
+  ++counters_.loop_searches;
+  const RegionalMap& map = regions[static_cast<std::size_t>(region)];
+  // 1. Where is the submap in the map? A search over the window the drift allows.
+  s_.match_grid->Build(*map.grid, map.grid->box(), config_.match_grid_coarsen, obstacle_threshold_);
+  const std::size_t stride = (cloud.size() + static_cast<std::size_t>(config_.search_points) - 1) /
+                             static_cast<std::size_t>(config_.search_points);
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < cloud.size() && n < s_.cloud.size(); i += stride) s_.cloud[n++] = cloud[i];
+  const Pose2 guess = Between(map.anchor, submap_world);
+  const float window_m = Clamp(config_.search_base_m + config_.search_per_metre_m * path_m, config_.search_max_m);
+  const float window_rad = Clamp(config_.search_base_rad + config_.search_per_metre_rad * path_m, config_.search_max_rad);
+  const CorrelativeSearchResult found = CorrelativeSearch(*s_.match_grid, Span<const Point2>(s_.cloud.data(), n), guess,
+                                                          window_m, window_rad, config_.search, s_.rotated);
+  out.search_score = found.score;
+  if (found.verdict != Status::kOk) {
+    ++counters_.loop_closures_rejected;
+    out.verdict = Status::kRejected;
+    return out;
+  }
+  // 2. Refined by PLICP against the map's lines.
+  BuildReference(map);
+  out.used_reference = true;
+  const RegistrationResult r =
+      RegisterImproved(*s_.reference, cloud, found.pose, nullptr, config_.registration, s_.correspondences);
+  if (r.verdict != Status::kOk) {
+    ++counters_.loop_closures_rejected;
+    out.verdict = Status::kRejected;
+    return out;
+  }
+  // 3. The edge region -> from: Z = S_region * S_from^-1, with S the submap in each frame. Its
+  // information is the registration's, carried from the submap's pose to Z (a rotation of the
+  // submap swings the lever arm to the other anchor).
+  const Pose2 in_region = r.pose;
+  const Pose2 in_from = Between(regions[static_cast<std::size_t>(from)].anchor, submap_world);
+  const Pose2 z = in_region * in_from.Inverse();
+  const Point2 lever{z.x - in_region.x, z.y - in_region.y};
+  Eigen::Matrix3f j_inv = Eigen::Matrix3f::Identity();  // d S / d Z
+  j_inv(0, 2) = lever.y;
+  j_inv(1, 2) = -lever.x;
+  const Eigen::Matrix3f h = j_inv.transpose() * r.hessian * j_inv;
+  RegistrationResult carried = r;
+  carried.hessian = h;
+  GraphEdge e;
+  e.from = region;
+  e.to = from;
+  e.measurement = z;
+  e.information = RegistrationInformation(carried, z);
+  e.kind = EdgeKind::kLoop;
+  const Status added = g.AddEdgeIfConsistent(e, config_.optimizer, config_.max_edge_chi2);
+  if (added != Status::kOk) {
+    ++counters_.loop_closures_rejected;
+    if (added == Status::kRejected) ++counters_.loop_closures_inconsistent;
+    if (added == Status::kPoolFull) ++counters_.edges_dropped_full;
+    out.verdict = Status::kRejected;
+    return out;
+  }
+  ++counters_.loop_closures_accepted;
+  WriteAnchors(regions);
+  out.submap_in_region = in_region;
+  out.verdict = Status::kOk;
+  return out;
+}
+
+}  // namespace dpcr

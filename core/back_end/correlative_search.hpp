@@ -1,0 +1,89 @@
+// Loop closure past the PLICP basin: an exhaustive correlative search (Olson 2009) of a point
+// cloud over a window of poses, on a coarse likelihood grid of a regional map. It finds where the
+// submap lies in a map it re-enters after a long drift (metres, degrees), for PLICP to refine.
+// Only unambiguous answers count: a second peak, far from the best, that scores nearly as well
+// (a twin room, a long corridor) makes the search answer kRejected.
+// Size-erased: MatchGridStorage<W, H> owns the cells.
+#pragma once
+
+#include <cstdint>
+
+#include "core/base/span.hpp"
+#include "core/base/status.hpp"
+#include "core/geometry/pose2.hpp"
+#include "core/grid/tiled_grid.hpp"
+
+namespace dpcr {
+
+// A coarse grid of obstacle likelihoods, 0..255, over a window of one map's frame: 255 on an
+// obstacle, falling with the distance to the nearest one (a chamfer distance transform).
+class MatchGrid {
+ public:
+  MatchGrid(Span<std::uint8_t> cells, int max_w, int max_h);
+  MatchGrid(const MatchGrid&) = delete;
+  MatchGrid& operator=(const MatchGrid&) = delete;
+
+  // Covers `window` (cells of `grid`, in its frame) at `coarsen` grid cells per match cell,
+  // clipped to the capacity. A grid cell above `obstacle_threshold` marks its match cell.
+  void Build(const TiledGrid& grid, CellBox window, int coarsen, std::int16_t obstacle_threshold);
+
+  // Likelihood at a point of the map's frame (0 outside).
+  std::uint8_t At(Point2 p) const;
+  std::uint8_t AtCell(int x, int y) const {
+    return (x < 0 || y < 0 || x >= w_ || y >= h_) ? 0 : cells_[static_cast<std::size_t>(y * w_ + x)];
+  }
+  float resolution_m() const { return res_; }
+  Point2 origin() const { return origin_; }
+  int width() const { return w_; }
+  int height() const { return h_; }
+  int obstacle_cells() const { return obstacles_; }
+
+ private:
+  void DistanceTransform();
+
+  Span<std::uint8_t> cells_;
+  int max_w_, max_h_;
+  int w_ = 0, h_ = 0;
+  int obstacles_ = 0;
+  float res_ = 0.1f;
+  Point2 origin_;
+};
+
+template <int kW, int kH>
+class MatchGridStorage : public MatchGrid {
+ public:
+  MatchGridStorage() : MatchGrid(Span<std::uint8_t>(cells_, kW * kH), kW, kH) {}
+
+ private:
+  std::uint8_t cells_[kW * kH];
+};
+
+struct CorrelativeSearchConfig {
+  // Angular step: the rotation that moves the farthest point by about one match cell.
+  float min_angle_step_rad = 0.005f;
+  float max_angle_step_rad = 0.035f;
+  // The best pose must reach this mean likelihood over the points (0..1).
+  float min_score = 0.55f;
+  // Ambiguity: a peak at least `peak_separation_m` (or `peak_separation_rad`) from the best that
+  // scores above `max_second_ratio` of it rejects the search.
+  float max_second_ratio = 0.9f;
+  float peak_separation_m = 0.5f;
+  float peak_separation_rad = 0.14f;
+};
+
+struct CorrelativeSearchResult {
+  Pose2 pose;                // best pose of the cloud's frame in the map's frame
+  float score = 0.0f;        // mean likelihood of the best pose, 0..1
+  float second_score = 0.0f; // the best score of a separate peak
+  std::uint32_t poses_evaluated = 0;
+  Status verdict = Status::kNotEnoughData;  // kOk, kRejected (weak or ambiguous), kNotEnoughData
+};
+
+// Searches poses within +-window_m (x, y) and +-window_rad around `initial` for the cloud
+// `points` (in its own frame). `rotated` is scratch for the rotated cloud in match-cell units
+// (at least points.size() entries).
+CorrelativeSearchResult CorrelativeSearch(const MatchGrid& grid, Span<const Point2> points, Pose2 initial,
+                                          float window_m, float window_rad, const CorrelativeSearchConfig& config,
+                                          Span<Point2> rotated);
+
+}  // namespace dpcr

@@ -1,0 +1,90 @@
+// The loop-closure search: a cloud found far outside the PLICP basin, and ambiguous scenes refused.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "core/back_end/correlative_search.hpp"
+#include "tests/core/registration_fixtures.hpp"
+
+using dpcr::Point2;
+using dpcr::Pose2;
+using dpcr_test::Segment;
+
+namespace {
+
+using Grid = dpcr::MatchGridStorage<128, 128>;
+
+// An L-shaped room with a table and a cupboard: no symmetry.
+std::vector<Segment> Room() {
+  return {{{1, 1}, {9, 1}}, {{9, 1}, {9, 5}}, {{9, 5}, {5, 5}}, {{5, 5}, {5, 9}}, {{5, 9}, {1, 9}},
+          {{1, 9}, {1, 1}}, {{2.5f, 3}, {3.5f, 3}}, {{3.5f, 3}, {3.5f, 3.6f}}, {{7, 2}, {7.8f, 2}}};
+}
+
+std::vector<Point2> Cloud(const std::vector<Segment>& walls, Pose2 at) {
+  return dpcr_test::SimulateScan(walls, at, 360, 0.01f, 3);
+}
+
+struct Setup {
+  dpcr_test::GridFixture fixture;
+  std::unique_ptr<Grid> grid = std::make_unique<Grid>();
+  std::vector<Point2> scratch = std::vector<Point2>(512);
+  explicit Setup(const std::vector<Segment>& walls) {
+    for (const Segment& s : walls) fixture.Draw(s);
+    grid->Build(*fixture.grid, fixture.grid->box(), 2, 0);
+  }
+  dpcr::CorrelativeSearchResult Search(const std::vector<Point2>& cloud, Pose2 initial, float window_m, float window_rad) {
+    return dpcr::CorrelativeSearch(*grid, dpcr::Span<const Point2>(cloud.data(), cloud.size()), initial, window_m, window_rad,
+                                   dpcr::CorrelativeSearchConfig{}, dpcr::Span<Point2>(scratch.data(), scratch.size()));
+  }
+};
+
+}  // namespace
+
+TEST_CASE("The correlative search finds a cloud 1 m and 12 degrees from its guess") {
+  Setup s(Room());
+  REQUIRE(s.grid->obstacle_cells() > 200);
+  const Pose2 truth{3.2f, 6.1f, 0.4f};
+  const auto cloud = Cloud(Room(), truth);
+  const Pose2 guess{truth.x + 0.8f, truth.y - 0.6f, truth.theta - 0.21f};
+  const dpcr::CorrelativeSearchResult r = s.Search(cloud, guess, 1.5f, 0.35f);
+  REQUIRE(r.verdict == dpcr::Status::kOk);
+  REQUIRE(std::hypot(r.pose.x - truth.x, r.pose.y - truth.y) < 0.1f);
+  REQUIRE(std::fabs(dpcr::NormalizeAngle(r.pose.theta - truth.theta)) < 0.03f);
+  REQUIRE(r.score > 0.7f);
+  REQUIRE(r.second_score < r.score);
+  // A window that does not reach the truth gives a weak or no answer, never a confident wrong one
+  // near the guess.
+  const dpcr::CorrelativeSearchResult narrow = s.Search(cloud, guess, 0.3f, 0.05f);
+  if (narrow.verdict == dpcr::Status::kOk) {
+    REQUIRE(std::hypot(narrow.pose.x - truth.x, narrow.pose.y - truth.y) < 0.1f);
+  }
+}
+
+TEST_CASE("The correlative search refuses twin rooms and corridors") {
+  SECTION("two identical rooms side by side, both inside the window") {
+    std::vector<Segment> twins;
+    for (const float dx : {0.0f, 5.5f}) {
+      for (const Segment& w : std::vector<Segment>{{{1, 2}, {5, 2}}, {{5, 2}, {5, 6}}, {{5, 6}, {1, 6}}, {{1, 6}, {1, 2}},
+                                                   {{2, 3}, {2.6f, 3}}, {{2.6f, 3}, {2.6f, 3.5f}}}) {
+        twins.push_back(Segment{{w.a.x + dx, w.a.y}, {w.b.x + dx, w.b.y}});
+      }
+    }
+    Setup s(twins);
+    // The robot in the left room sees only that room (walls block the other).
+    const Pose2 truth{3.0f, 4.5f, 0.1f};
+    const auto cloud = Cloud(twins, truth);
+    const dpcr::CorrelativeSearchResult r = s.Search(cloud, Pose2{5.5f, 4.5f, 0.1f}, 3.0f, 0.1f);
+    REQUIRE(r.verdict == dpcr::Status::kRejected);
+    REQUIRE(r.second_score > 0.9f * r.score);
+  }
+  SECTION("a featureless corridor") {
+    const std::vector<Segment> corridor{{{0.2f, 5}, {12.6f, 5}}, {{0.2f, 6.5f}, {12.6f, 6.5f}}};
+    Setup s(corridor);
+    const Pose2 truth{6.0f, 5.7f, 0.0f};
+    const auto cloud = dpcr_test::SimulateScan(corridor, truth, 360, 0.01f, 3, 3.0f);
+    const dpcr::CorrelativeSearchResult r = s.Search(cloud, Pose2{6.4f, 5.7f, 0.0f}, 1.5f, 0.1f);
+    REQUIRE(r.verdict == dpcr::Status::kRejected);
+  }
+}
