@@ -62,6 +62,8 @@ class Submap {
   Span<Point2> transformed_;  // one scan in the submap frame, for InsertRays
   Span<CellIndex> scratch_;
   int max_beams_;
+  // The ring of scans. Not a RingBuffer: N is a run-time setting (<= the storage's), the class is
+  // size-erased over its storage, and a slot is a run of max_beams_ points in point_store_.
   int capacity_ = 0;  // N in use (<= poses_.size())
   int head_ = 0;
   int size_ = 0;
