@@ -11,7 +11,6 @@ enum class Status : std::uint8_t {
   kPoolFull,          // a pool (tiles, regions) has no free slot
   kInvalidArgument,
   kOutOfBounds,       // a coordinate outside a bounded grid
-  kNotFound,
   kNotEnoughData,     // too few points/correspondences to decide
   kRejected,          // a registration failed its acceptance test
 };

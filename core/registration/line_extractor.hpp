@@ -1,5 +1,5 @@
 // Line features from the obstacle cells of an int16 occupancy grid, standing in for RM-Line
-// (the paper's §3.2.1 step 1, which has no public code). Pipeline (DESIGN §3):
+// (the paper's §3.2.1 step 1, which has no public code). Pipeline:
 //   connected components of obstacle cells (gaps up to link_radius_cells - 1 bridged)  ->  iterative end-point split of each component
 //   (Douglas–Peucker on an unordered cell set, explicit stack)  ->  total-least-squares refit
 //   ->  merge of collinear neighbours  ->  a line id per obstacle cell.
@@ -50,7 +50,7 @@ struct LineExtractorConfig {
   // Cells this close (Chebyshev) are linked into one component. 1 = 8-connected; 2 bridges the
   // one-cell gaps of walls seen at grazing angles, which otherwise fall apart into clutter.
   int link_radius_cells = 2;
-  float split_tolerance_cells = 1.5f;  // Douglas–Peucker epsilon (DESIGN: 1–1.5 cells)
+  float split_tolerance_cells = 1.5f;  // Douglas–Peucker epsilon, cells
   int min_support = 5;                 // fewer cells are clutter (chair legs), not a line
   // A leaf or merge fitting worse than this is not a line. A rasterised slanted wall alone has
   // ~0.3 cells; 1.5 cm range noise at 5 cm cells adds ~0.3 more.

@@ -136,7 +136,7 @@ Eigen::Vector3f SolveStep(Eigen::Matrix3f h, Eigen::Vector3f g, const Pose2& pos
   return h.ldlt().solve(-g);
 }
 
-// The verdict (DESIGN §3 acceptance): enough support, small residual, observable, plausible.
+// The verdict: enough support, small residual, observable, plausible.
 // `result` holds the pose, Hessian and inlier statistics.
 Status Verdict(RegistrationResult* result, const Pose2& initial, const PosePrior* prior, const PlicpConfig& config) {
   if (result->inliers < config.min_correspondences) return Status::kNotEnoughData;
