@@ -8,7 +8,6 @@ namespace dpcr {
 namespace {
 
 constexpr int kSplitStack = 64;
-constexpr int kMaxLinesPerExtraction = 1024;
 
 struct Range {
   std::uint32_t lo;
@@ -191,8 +190,8 @@ void ComputeLocalNormals(Span<ObstacleCell> cells, const std::uint16_t* cell_at,
 namespace {
 
 // ObstacleCell::line of a cell of the component being collected, not yet owned by a line.
+// Line ids stay below it (ExtractLines asserts lines.size() < kVisited).
 constexpr std::uint16_t kVisited = kNoLine - 1;
-static_assert(kMaxLinesPerExtraction <= kVisited, "line ids stay below the markers");
 
 // Step 1: the connected component of `seed` (cells within link_radius_cells), breadth first,
 // appended to perm from `end` on (perm itself is the queue); its cells are marked kVisited.
@@ -329,7 +328,7 @@ int CompactLines(Span<ObstacleCell> cells, Span<LineFeature> lines, int count, c
 int ExtractLines(Span<ObstacleCell> cells, const std::uint16_t* cell_at, int w, int h,
                  Span<std::uint16_t> scratch, Span<LineFeature> lines, const LineExtractorConfig& config,
                  LineExtractionStats* stats) {
-  DPCR_ASSERT(scratch.size() >= cells.size() && lines.size() <= kMaxLinesPerExtraction);
+  DPCR_ASSERT(scratch.size() >= cells.size() + 2 * lines.size() && lines.size() < kVisited);
   LineExtractionStats local;
   LineExtractionStats& st = stats != nullptr ? *stats : local;
   st = LineExtractionStats{};
@@ -347,8 +346,9 @@ int ExtractLines(Span<ObstacleCell> cells, const std::uint16_t* cell_at, int w, 
   for (ObstacleCell& c : cells) {
     if (c.line == kVisited) c.line = kNoLine;
   }
-  std::uint16_t alias[kMaxLinesPerExtraction];
-  std::uint16_t final_id[kMaxLinesPerExtraction];
+  // After the cells' permutation, the lines' merge aliases and final ids.
+  std::uint16_t* alias = perm + cells.size();
+  std::uint16_t* final_id = alias + lines.size();
   MergeCollinear(lines, count, alias, config, &st);
   return CompactLines(cells, lines, count, alias, final_id);
 }

@@ -71,7 +71,8 @@ struct LineExtractionStats {
 
 // `cells`: obstacle cells (their `line` fields are overwritten). `cell_at`: a w x h table holding,
 // for each obstacle cell's position, its index in `cells`, and kNoCell elsewhere.
-// `scratch`: at least cells.size() entries. `lines`: output capacity; returns the count used.
+// `scratch`: at least cells.size() + 2 * lines.size() entries. `lines`: output capacity (fewer
+// than 0xFFFE); returns the count used.
 int ExtractLines(Span<ObstacleCell> cells, const std::uint16_t* cell_at, int w, int h,
                  Span<std::uint16_t> scratch, Span<LineFeature> lines, const LineExtractorConfig& config,
                  LineExtractionStats* stats);

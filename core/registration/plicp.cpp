@@ -1,18 +1,22 @@
 #include "core/registration/plicp.hpp"
 
 #include <cmath>
+#include <cstdint>
 
 #include <Eigen/Cholesky>
+
+#include "core/base/assert.hpp"
 
 namespace dpcr {
 namespace {
 
 // Residual histogram for the trimming percentiles in O(points). Linear bins of gate/256 (2 mm at
 // the default gate) are fine enough: the threshold never goes below trim_floor_m (3 cm).
+// 16-bit counts (targets have fewer than 2^16 points): 512 bytes of stack.
 constexpr int kBins = 256;
 
 struct Histogram {
-  std::uint32_t count[kBins] = {};
+  std::uint16_t count[kBins] = {};
   std::uint32_t total = 0;
   void Add(float r, float inv_bin) {
     int b = static_cast<int>(r * inv_bin);
@@ -57,6 +61,7 @@ float Residual(const Correspondence& c, Point2 w) {
 // each point's correspondence is kept there for pass 2 (ref kNoCell: none).
 float TrimThreshold(const RegistrationReference& ref, Span<const Point2> target, const PointTransform& to_world,
                     const PlicpConfig& config, CorrespondenceFn find, Span<Correspondence> cache) {
+  DPCR_ASSERT(target.size() <= UINT16_MAX);
   Histogram hist;
   const float bin_m = config.gate_m / kBins, inv_bin = 1.0f / bin_m;
   for (std::size_t i = 0; i < target.size(); ++i) {

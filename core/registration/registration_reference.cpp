@@ -18,7 +18,8 @@ RegistrationReference::RegistrationReference(Span<ObstacleCell> cells, Span<std:
       refit_(refit),
       max_w_(max_w),
       max_h_(max_h) {
-  DPCR_ASSERT(nearest.size() == static_cast<std::size_t>(max_w * max_h) && scratch.size() >= cells.size());
+  DPCR_ASSERT(nearest.size() == static_cast<std::size_t>(max_w * max_h) &&
+              scratch.size() >= cells.size() + 2 * lines.size());
   DPCR_ASSERT(refit.empty() || refit.size() >= lines.size());
   DPCR_ASSERT(cells.size() < kNoneNear);
   const int blocks_x = (max_w + 7) >> kBlockShift, blocks_y = (max_h + 7) >> kBlockShift;

@@ -140,18 +140,20 @@ class RegistrationReference {
 };
 
 // 256 x 256 window, 4096 cells, 512 lines: 128 KiB table + 8 KiB obstacle bits + 1 KiB of
-// block-row masks + 40 KiB cells/scratch + 28 KiB lines, + 12 KiB of point-refit sums when
+// block-row masks + 40 KiB cells + 10 KiB scratch + 30 KiB lines, + 12 KiB of point-refit sums when
 // kPointRefit (a reference built from a grid alone, e.g. a regional map's, has no raw points to
 // refit to and carries none).
 template <int kW, int kH, int kCells, int kLines, bool kPointRefit = true>
 class RegistrationReferenceStorage : public RegistrationReference {
   static_assert(kCells < 0xFFFE, "cell ids are 16-bit below the table's two markers (kNoneNear, kNotSearched)");
+  static_assert(kLines < 0xFFFE, "line ids are 16-bit below the line extractor's two markers");
   static constexpr int kBlocks = ((kW + 7) / 8) * ((kH + 7) / 8);
+  static constexpr int kScratch = kCells + 2 * kLines;  // ExtractLines: cells, then lines twice
 
  public:
   RegistrationReferenceStorage()
       : RegistrationReference(Span<ObstacleCell>(cells_, kCells), Span<std::uint16_t>(nearest_, kW * kH),
-                              Span<std::uint64_t>(obstacle_blocks_, kBlocks), Span<std::uint16_t>(scratch_, kCells),
+                              Span<std::uint64_t>(obstacle_blocks_, kBlocks), Span<std::uint16_t>(scratch_, kScratch),
                               Span<LineFeature>(lines_, kLines),
                               Span<RefitSums>(refit_, kPointRefit ? kLines : 0), kW, kH) {}
 
@@ -159,7 +161,7 @@ class RegistrationReferenceStorage : public RegistrationReference {
   ObstacleCell cells_[kCells];
   std::uint16_t nearest_[kW * kH];
   std::uint64_t obstacle_blocks_[kBlocks];
-  std::uint16_t scratch_[kCells];
+  std::uint16_t scratch_[kScratch];
   LineFeature lines_[kLines];
   RefitSums refit_[kPointRefit ? kLines : 1];  // C++ has no empty arrays: one unused entry
 };
