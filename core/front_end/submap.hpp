@@ -13,6 +13,7 @@
 #include "core/config.hpp"
 #include "core/geometry/pose2.hpp"
 #include "core/grid/ray_caster.hpp"
+#include "core/grid/scan_marker.hpp"
 #include "core/base/span.hpp"
 #include "core/base/static_vector.hpp"
 #include "core/grid/tile_pool.hpp"
@@ -70,7 +71,7 @@ class Submap {
   GridConfig add_config_;
   GridConfig remove_config_;
   float miss_range_m_ = 0.0f;
-  std::uint32_t stamp_ = 0;
+  ScanMarker scan_marker_;  // one per insertion or removal: each is a scan to the grid
   std::uint32_t recentres_ = 0;
 };
 
