@@ -1,5 +1,12 @@
 // Compile-time capacities, grouped in named board profiles. sizeof(Mapper<Profile>) is the
-// RAM bill of a profile; tests/core/budget_test.cpp prints it and checks it against kRamBudgetBytes.
+// RAM bill of a profile; tests/budget/memory_budget_test.cpp prints it and checks it against
+// kRamBudgetBytes.
+//
+// kBudget*Instr: instruction budgets per scan, by stage (mean over the fixed run of
+// tests/budget/stage_cost.sh, counted by callgrind on x86-64, ~1.2-1.3x the count measured when
+// set): prediction (odometry + de-skew), first registration, second registration, insertion
+// (submap + regional map), line extraction (reference builds: obstacle cells, lines; the
+// nearest-obstacle searches are paid by the registrations that query them).
 #pragma once
 
 #include <cstddef>
@@ -29,16 +36,12 @@ struct VacuumProfile {
   static constexpr int kSubmapMaxScans = 20;
   // Robot-centred submap: 256 x 256 cells = 12.8 m at 5 cm.
   static constexpr int kSubmapSideCells = 256;
-  // Line features per grid (submap or regional map) and back-end graph size.
+  // Line features per grid (submap or regional map).
   static constexpr int kMaxLines = 512;
   // Obstacle cells a registration reference holds (a 12.8 m window of walls and furniture).
   static constexpr int kReferenceCells = 4096;
+  // Edges of the back end's pose graph.
   static constexpr int kMaxGraphEdges = 256;
-  // Instruction budgets per scan, by stage (mean over the fixed run of tests/budget/stage_cost.sh,
-  // counted by callgrind on x86-64, ~1.2-1.3x the count measured when set): prediction (odometry +
-  // de-skew), first registration, second registration, insertion (submap + regional map), line
-  // extraction (reference builds: obstacle cells, lines; the nearest-obstacle searches are paid by
-  // the registrations that query them).
   static constexpr std::uint64_t kBudgetPredictionInstr = 80'000;
   static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 320'000;
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 65'000;
@@ -60,11 +63,6 @@ struct BuildingProfile {
   static constexpr int kMaxLines = 512;
   static constexpr int kReferenceCells = 4096;
   static constexpr int kMaxGraphEdges = 1024;
-  // Instruction budgets per scan, by stage (mean over the fixed run of tests/budget/stage_cost.sh,
-  // counted by callgrind on x86-64, ~1.2-1.3x the count measured when set): prediction (odometry +
-  // de-skew), first registration, second registration, insertion (submap + regional map), line
-  // extraction (reference builds: obstacle cells, lines; the nearest-obstacle searches are paid by
-  // the registrations that query them).
   static constexpr std::uint64_t kBudgetPredictionInstr = 30'000;
   static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 165'000;
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 22'000;
@@ -85,11 +83,6 @@ struct TinyProfile {
   static constexpr int kMaxLines = 128;
   static constexpr int kReferenceCells = 2048;
   static constexpr int kMaxGraphEdges = 16;
-  // Instruction budgets per scan, by stage (mean over the fixed run of tests/budget/stage_cost.sh,
-  // counted by callgrind on x86-64, ~1.2-1.3x the count measured when set): prediction (odometry +
-  // de-skew), first registration, second registration, insertion (submap + regional map), line
-  // extraction (reference builds: obstacle cells, lines; the nearest-obstacle searches are paid by
-  // the registrations that query them).
   static constexpr std::uint64_t kBudgetPredictionInstr = 45'000;
   static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 140'000;
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 40'000;  // 32 K: the hit margin gives more target cells

@@ -21,15 +21,14 @@ struct GridConfig {
   std::int16_t clamp_max = 3584;
   std::int16_t clamp_min = -3584;
   // Regional-map cells that reach a clamp are settled and keep their value (TiledGrid::
-  // set_settle_at_bounds): a settled map cannot follow the robot's drift. Apartment, 35 min:
-  // LocErr_ave 0.060 m with, 0.81 m without (docs/front-end-accuracy.md). The price: a wall or
-  // free space that has settled is not unlearnt when furniture moves.
+  // set_settle_at_bounds): a settled map cannot follow the robot's drift (measured:
+  // docs/front-end-accuracy.md). The price: a wall or free space that has settled is not unlearnt
+  // when furniture moves.
   bool settle_at_clamp = true;
   // A ray to a return clears cells only up to this distance before the return. Range noise
   // (1-3.5 cm on an LD06-class lidar) puts some returns of a wall in front of it and some
   // behind: without the margin, the rays of the longer returns clear the cells the shorter ones
-  // marked, scan after scan. Apartment, 35 min, seeds 1-10: LocErr_ave mean 0.067 m at 0,
-  // 0.043 m at 0.05 (measured before the speed merge; docs/front-end-accuracy.md).
+  // marked, scan after scan (measured: docs/front-end-accuracy.md).
   float hit_margin_m = 0.05f;
 };
 
@@ -54,14 +53,13 @@ struct FrontEndConfig {
   int second_registration_period = 5;  // Ks: submap -> regional map every Ks scans
   // Misses a submap scan applies: only the last this-many metres of each ray before its hit
   // (0 = the whole ray). The submap serves registration, which needs hits and the free space
-  // next to them. 0.5 m: intel local error 0.0146 m vs 0.0161 m with whole rays, ~3x cheaper
-  // submap upkeep (docs/front-end-cost.md).
+  // next to them: 0.5 m is as accurate as whole rays at a fraction of the submap upkeep
+  // (measured: docs/front-end-cost.md).
   float submap_miss_range_m = 0.5f;
   // The same for the scans a regional map takes (beams without a return always clear their whole
-  // length; 0 = whole rays). Near the robot every ray crosses the cells its neighbours crossed
-  // (44 % of the regional ray walk on intel was such repeats); 4 m keeps the free space a
-  // reference needs next to the walls. Intel local error and apartment LocErr_ave unchanged
-  // within their noise, ~5 % fewer instructions (docs/front-end-cost.md).
+  // length; 0 = whole rays). Near the robot every ray crosses the cells its neighbours crossed,
+  // so much of a whole-ray walk repeats; 4 m keeps the free space a reference needs next to the
+  // walls, at the same accuracy and fewer instructions (measured: docs/front-end-cost.md).
   float region_miss_range_m = 4.0f;
   // Submap lines are refitted to the raw points of the submap's scans lying within this distance
   // (RegistrationReference::AddRefitPoint), so they sit where the walls are, not on cell centres.

@@ -1,6 +1,6 @@
 // The whole SLAM core in one fixed-size object: sizeof(Mapper<Profile>) is the RAM bill.
 // Feed it odometry and scans in time order; read the pose, status, counters and maps.
-// The work is done by FrontEnd (core/front_end.hpp); this class owns its storage, sized by the
+// The work is done by FrontEnd (core/front_end/front_end.hpp); this class owns its storage, sized by the
 // profile, and exports the maps.
 #pragma once
 

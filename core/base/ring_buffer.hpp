@@ -1,6 +1,5 @@
-// A FIFO of fixed capacity. Overflow policy: push on a full ring returns kCapacityExceeded;
-// callers that want "drop the oldest" pop it first, so every removal is explicit
-// (the submap must know exactly which scan leaves).
+// A FIFO of fixed capacity (the odometry buffer's). Overflow policy: push on a full ring returns
+// kCapacityExceeded; callers that want "drop the oldest" pop it first, so every removal is explicit.
 #pragma once
 
 #include <cstddef>

@@ -9,8 +9,6 @@ const char* ToString(Status status) {
     case Status::kPoolFull: return "pool_full";
     case Status::kInvalidArgument: return "invalid_argument";
     case Status::kOutOfBounds: return "out_of_bounds";
-    case Status::kNotFound: return "not_found";
-    case Status::kStaleHandle: return "stale_handle";
     case Status::kNotEnoughData: return "not_enough_data";
     case Status::kRejected: return "rejected";
   }

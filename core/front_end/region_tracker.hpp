@@ -1,5 +1,5 @@
 // Which region the robot is in: square cells of width S keyed from the start position
-// (DESIGN §3: key = floor((x - x0) / S)), with hysteresis so that jitter on a border does not
+// (key = floor((x - x0) / S)), with hysteresis so that jitter on a border does not
 // switch regions back and forth.
 #pragma once
 

@@ -46,9 +46,8 @@ InsertionStats Submap::Insert(const Pose2& pose, Span<const Point2> points, cons
   // exactly the cells its insertion did.
   const PointTransform to_submap(pose);
   for (std::size_t i = 0; i < points.size(); ++i) transformed_[i] = to_submap(points[i]);
-  if (++stamp_ == 0) stamp_ = 1;
   return InsertRays(*grid_, Point2{pose.x, pose.y}, Span<const Point2>(transformed_.data(), points.size()),
-                    Span<const Point2>(), config, stamp_, scratch_, miss_range_m_);
+                    Span<const Point2>(), config, scan_marker_.Next(), scratch_, miss_range_m_);
 }
 
 void Submap::RecentreOn(Point2 p) {

@@ -13,6 +13,7 @@
 #include "core/config.hpp"
 #include "core/geometry/pose2.hpp"
 #include "core/grid/ray_caster.hpp"
+#include "core/grid/scan_marker.hpp"
 #include "core/base/span.hpp"
 #include "core/base/static_vector.hpp"
 #include "core/grid/tile_pool.hpp"
@@ -62,13 +63,15 @@ class Submap {
   Span<Point2> transformed_;  // one scan in the submap frame, for InsertRays
   Span<CellIndex> scratch_;
   int max_beams_;
+  // The ring of scans. Not a RingBuffer: N is a run-time setting (<= the storage's), the class is
+  // size-erased over its storage, and a slot is a run of max_beams_ points in point_store_.
   int capacity_ = 0;  // N in use (<= poses_.size())
   int head_ = 0;
   int size_ = 0;
   GridConfig add_config_;
   GridConfig remove_config_;
   float miss_range_m_ = 0.0f;
-  std::uint32_t stamp_ = 0;
+  ScanMarker scan_marker_;  // one per insertion or removal: each is a scan to the grid
   std::uint32_t recentres_ = 0;
 };
 

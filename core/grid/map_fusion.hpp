@@ -1,5 +1,5 @@
 // The global map on demand: regional maps fused by summing log-odds (clamped) into a
-// caller-provided buffer. Never the only copy of the data (DESIGN §2).
+// caller-provided buffer. Never the only copy of the data.
 #pragma once
 
 #include <cstdint>

@@ -24,7 +24,7 @@ struct InsertionStats {
 
 // `hits`: endpoints of beams with a return; `free_ends`: where beams without a return stop
 // clearing. Both in the grid's frame. `scratch` holds at least hits.size() cells.
-// `stamp` identifies the scan (non-zero, different from the previous scan's).
+// `stamp` identifies the scan (ScanMarker: non-zero, different from the previous scan's).
 // `miss_range_m` > 0: a ray to a hit clears only its last miss_range_m metres (free ends: whole).
 // A ray to a hit stops clearing config.hit_margin_m before it (GridConfig::hit_margin_m).
 InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hits,

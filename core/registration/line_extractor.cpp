@@ -8,7 +8,6 @@ namespace dpcr {
 namespace {
 
 constexpr int kSplitStack = 64;
-constexpr int kMaxLinesPerExtraction = 1024;
 
 struct Range {
   std::uint32_t lo;
@@ -188,93 +187,103 @@ void ComputeLocalNormals(Span<ObstacleCell> cells, const std::uint16_t* cell_at,
   }
 }
 
-int ExtractLines(Span<ObstacleCell> cells, const std::uint16_t* cell_at, int w, int h,
-                 Span<std::uint16_t> scratch, Span<LineFeature> lines, const LineExtractorConfig& config,
-                 LineExtractionStats* stats) {
-  DPCR_ASSERT(scratch.size() >= cells.size() && lines.size() <= kMaxLinesPerExtraction);
-  LineExtractionStats local;
-  LineExtractionStats& st = stats != nullptr ? *stats : local;
-  st = LineExtractionStats{};
-  std::uint16_t* perm = scratch.data();
-  constexpr std::uint16_t kVisited = kNoLine - 1;
-  for (ObstacleCell& c : cells) c.line = kNoLine;
+namespace {
 
-  const int link = config.link_radius_cells;
-  int count = 0;
-  std::uint32_t end = 0;
-  for (std::uint32_t seed = 0; seed < cells.size(); ++seed) {
-    if (cells[seed].line != kNoLine) continue;
-    // 1. One connected component (cells within link_radius_cells), breadth first, using perm itself as the queue.
-    const std::uint32_t start = end;
-    perm[end++] = static_cast<std::uint16_t>(seed);
-    cells[seed].line = kVisited;
-    for (std::uint32_t q = start; q < end; ++q) {
-      const ObstacleCell c = cells[perm[q]];
-      // Neighbours clipped to the table (rows, then columns: the visiting order is the queue's).
-      const int x0 = c.x - link < 0 ? 0 : c.x - link, x1 = c.x + link >= w ? w - 1 : c.x + link;
-      const int y0 = c.y - link < 0 ? 0 : c.y - link, y1 = c.y + link >= h ? h - 1 : c.y + link;
-      for (int y = y0; y <= y1; ++y) {
-        const std::uint16_t* row = cell_at + y * w;
-        for (int x = x0; x <= x1; ++x) {
-          const std::uint16_t k = row[x];
-          if (k == kNoCell || cells[k].line != kNoLine) continue;
-          cells[k].line = kVisited;
-          perm[end++] = k;
-        }
+// ObstacleCell::line of a cell of the component being collected, not yet owned by a line.
+// Line ids stay below it (ExtractLines asserts lines.size() < kVisited).
+constexpr std::uint16_t kVisited = kNoLine - 1;
+
+// Step 1: the connected component of `seed` (cells within link_radius_cells), breadth first,
+// appended to perm from `end` on (perm itself is the queue); its cells are marked kVisited.
+Range CollectComponent(Span<ObstacleCell> cells, const std::uint16_t* cell_at, int w, int h, int link,
+                       std::uint32_t seed, std::uint16_t* perm, std::uint32_t end) {
+  const std::uint32_t start = end;
+  perm[end++] = static_cast<std::uint16_t>(seed);
+  cells[seed].line = kVisited;
+  for (std::uint32_t q = start; q < end; ++q) {
+    const ObstacleCell c = cells[perm[q]];
+    // Neighbours clipped to the table (rows, then columns: the visiting order is the queue's).
+    const int x0 = c.x - link < 0 ? 0 : c.x - link, x1 = c.x + link >= w ? w - 1 : c.x + link;
+    const int y0 = c.y - link < 0 ? 0 : c.y - link, y1 = c.y + link >= h ? h - 1 : c.y + link;
+    for (int y = y0; y <= y1; ++y) {
+      const std::uint16_t* row = cell_at + y * w;
+      for (int x = x0; x <= x1; ++x) {
+        const std::uint16_t k = row[x];
+        if (k == kNoCell || cells[k].line != kNoLine) continue;
+        cells[k].line = kVisited;
+        perm[end++] = k;
       }
     }
-    ++st.components;
-    // 2. Split until every piece is straight within the tolerance (explicit stack, no recursion).
-    Range stack[kSplitStack];
-    int top = 0;
-    stack[top++] = Range{start, end};
-    while (top > 0) {
-      const Range r = stack[--top];
-      const LineFeature fit = Moments(cells, perm, r);
-      float dev = 0.0f;
-      for (std::uint32_t i = r.lo; i < r.hi; ++i) {
-        const Point2 p = Centre(cells[perm[i]]);
-        dev = std::fmax(dev, std::fabs(fit.normal.x * p.x + fit.normal.y * p.y - fit.offset));
-      }
-      std::uint32_t mid = 0;
-      const bool splittable = dev > config.split_tolerance_cells && r.hi - r.lo >= 3;
-      if (splittable && top + 2 > kSplitStack) st.stack_full = true;
-      if (splittable && top + 2 <= kSplitStack && Split(cells, perm, r, fit, &mid)) {
-        stack[top++] = Range{r.lo, mid};
-        stack[top++] = Range{mid, r.hi};
-        continue;
-      }
-      // 3. A leaf: keep it as a line if it is long and straight enough (TLS refit = `fit`).
-      ++st.leaves;
-      if (fit.support < config.min_support || fit.rms > config.max_rms_cells) continue;
-      if (count >= static_cast<int>(lines.size())) {
-        st.lines_full = true;
-        continue;
-      }
-      LineFeature l = fit;
-      const Point2 d{l.normal.y, -l.normal.x};
-      float tmin = 1e30f, tmax = -1e30f;
-      for (std::uint32_t i = r.lo; i < r.hi; ++i) {
-        const Point2 p = Centre(cells[perm[i]]);
-        const float t = d.x * (p.x - l.mean.x) + d.y * (p.y - l.mean.y);
-        tmin = std::fmin(tmin, t);
-        tmax = std::fmax(tmax, t);
-        cells[perm[i]].line = static_cast<std::uint16_t>(count);
-      }
-      // The extreme cells cover half a cell beyond their centres: the wall ends there (±0.5 cell).
-      tmin -= 0.5f;
-      tmax += 0.5f;
-      l.a = Point2{l.mean.x + tmin * d.x, l.mean.y + tmin * d.y};
-      l.b = Point2{l.mean.x + tmax * d.x, l.mean.y + tmax * d.y};
-      lines[static_cast<std::size_t>(count++)] = l;
-    }
   }
-  for (ObstacleCell& c : cells) {
-    if (c.line == kVisited) c.line = kNoLine;
-  }
+  return Range{start, end};
+}
 
-  // 4. Merge collinear neighbours that the split separated (thick walls, small gaps).
-  std::uint16_t alias[kMaxLinesPerExtraction];
+// Largest distance of the range's cells from the fitted line.
+float MaxDeviation(Span<ObstacleCell> cells, const std::uint16_t* perm, Range r, const LineFeature& fit) {
+  float dev = 0.0f;
+  for (std::uint32_t i = r.lo; i < r.hi; ++i) {
+    const Point2 p = Centre(cells[perm[i]]);
+    dev = std::fmax(dev, std::fabs(fit.normal.x * p.x + fit.normal.y * p.y - fit.offset));
+  }
+  return dev;
+}
+
+// Step 3: a straight leaf becomes line `id` (its TLS fit, with endpoints) and owns its cells.
+LineFeature LeafLine(Span<ObstacleCell> cells, const std::uint16_t* perm, Range r, const LineFeature& fit,
+                     std::uint16_t id) {
+  LineFeature l = fit;
+  const Point2 d{l.normal.y, -l.normal.x};
+  float tmin = 1e30f, tmax = -1e30f;
+  for (std::uint32_t i = r.lo; i < r.hi; ++i) {
+    const Point2 p = Centre(cells[perm[i]]);
+    const float t = d.x * (p.x - l.mean.x) + d.y * (p.y - l.mean.y);
+    tmin = std::fmin(tmin, t);
+    tmax = std::fmax(tmax, t);
+    cells[perm[i]].line = id;
+  }
+  // The extreme cells cover half a cell beyond their centres: the wall ends there (±0.5 cell).
+  tmin -= 0.5f;
+  tmax += 0.5f;
+  l.a = Point2{l.mean.x + tmin * d.x, l.mean.y + tmin * d.y};
+  l.b = Point2{l.mean.x + tmax * d.x, l.mean.y + tmax * d.y};
+  return l;
+}
+
+// Steps 2 and 3 for one component: split until every piece is straight within the tolerance
+// (explicit stack, no recursion); pieces long and straight enough become lines from `count` on.
+// Returns the new line count.
+int SplitComponent(Span<ObstacleCell> cells, std::uint16_t* perm, Range component, Span<LineFeature> lines, int count,
+                   const LineExtractorConfig& config, LineExtractionStats* st) {
+  Range stack[kSplitStack];
+  int top = 0;
+  stack[top++] = component;
+  while (top > 0) {
+    const Range r = stack[--top];
+    const LineFeature fit = Moments(cells, perm, r);
+    std::uint32_t mid = 0;
+    const bool splittable = MaxDeviation(cells, perm, r, fit) > config.split_tolerance_cells && r.hi - r.lo >= 3;
+    if (splittable && top + 2 > kSplitStack) st->stack_full = true;
+    if (splittable && top + 2 <= kSplitStack && Split(cells, perm, r, fit, &mid)) {
+      stack[top++] = Range{r.lo, mid};
+      stack[top++] = Range{mid, r.hi};
+      continue;
+    }
+    ++st->leaves;
+    if (fit.support < config.min_support || fit.rms > config.max_rms_cells) continue;
+    if (count >= static_cast<int>(lines.size())) {
+      st->lines_full = true;
+      continue;
+    }
+    lines[static_cast<std::size_t>(count)] = LeafLine(cells, perm, r, fit, static_cast<std::uint16_t>(count));
+    ++count;
+  }
+  return count;
+}
+
+// Step 4: merges collinear neighbours that the split separated (thick walls, small gaps) into
+// the lower-numbered line; alias[j] = the line j went into (j itself if it survives).
+void MergeCollinear(Span<LineFeature> lines, int count, std::uint16_t* alias, const LineExtractorConfig& config,
+                    LineExtractionStats* st) {
   for (int i = 0; i < count; ++i) alias[i] = static_cast<std::uint16_t>(i);
   for (int pass = 0; pass < 4; ++pass) {
     bool merged_any = false;
@@ -286,14 +295,18 @@ int ExtractLines(Span<ObstacleCell> cells, const std::uint16_t* cell_at, int w, 
         if (m.rms > config.max_rms_cells) continue;
         lines[i] = m;
         alias[j] = static_cast<std::uint16_t>(i);
-        ++st.merges;
+        ++st->merges;
         merged_any = true;
       }
     }
     if (!merged_any) break;
   }
-  // 5. Compact the survivors and relabel the cells.
-  std::uint16_t final_id[kMaxLinesPerExtraction];
+}
+
+// Step 5: compacts the surviving lines to the front and relabels the cells; returns their count.
+// `final_id`: scratch of `count` entries.
+int CompactLines(Span<ObstacleCell> cells, Span<LineFeature> lines, int count, const std::uint16_t* alias,
+                 std::uint16_t* final_id) {
   int kept = 0;
   for (int i = 0; i < count; ++i) {
     if (alias[i] == i) {
@@ -308,6 +321,36 @@ int ExtractLines(Span<ObstacleCell> cells, const std::uint16_t* cell_at, int w, 
     c.line = final_id[root];
   }
   return kept;
+}
+
+}  // namespace
+
+int ExtractLines(Span<ObstacleCell> cells, const std::uint16_t* cell_at, int w, int h,
+                 Span<std::uint16_t> scratch, Span<LineFeature> lines, const LineExtractorConfig& config,
+                 LineExtractionStats* stats) {
+  DPCR_ASSERT(scratch.size() >= cells.size() + 2 * lines.size() && lines.size() < kVisited);
+  LineExtractionStats local;
+  LineExtractionStats& st = stats != nullptr ? *stats : local;
+  st = LineExtractionStats{};
+  std::uint16_t* perm = scratch.data();
+  for (ObstacleCell& c : cells) c.line = kNoLine;
+  int count = 0;
+  std::uint32_t end = 0;
+  for (std::uint32_t seed = 0; seed < cells.size(); ++seed) {
+    if (cells[seed].line != kNoLine) continue;
+    const Range component = CollectComponent(cells, cell_at, w, h, config.link_radius_cells, seed, perm, end);
+    end = component.hi;
+    ++st.components;
+    count = SplitComponent(cells, perm, component, lines, count, config, &st);
+  }
+  for (ObstacleCell& c : cells) {
+    if (c.line == kVisited) c.line = kNoLine;
+  }
+  // After the cells' permutation, the lines' merge aliases and final ids.
+  std::uint16_t* alias = perm + cells.size();
+  std::uint16_t* final_id = alias + lines.size();
+  MergeCollinear(lines, count, alias, config, &st);
+  return CompactLines(cells, lines, count, alias, final_id);
 }
 
 }  // namespace dpcr

@@ -1,5 +1,5 @@
 // Line features from the obstacle cells of an int16 occupancy grid, standing in for RM-Line
-// (the paper's §3.2.1 step 1, which has no public code). Pipeline (DESIGN §3):
+// (the paper's §3.2.1 step 1, which has no public code). Pipeline:
 //   connected components of obstacle cells (gaps up to link_radius_cells - 1 bridged)  ->  iterative end-point split of each component
 //   (Douglas–Peucker on an unordered cell set, explicit stack)  ->  total-least-squares refit
 //   ->  merge of collinear neighbours  ->  a line id per obstacle cell.
@@ -14,8 +14,12 @@
 
 namespace dpcr {
 
-constexpr std::uint16_t kNoLine = 0xFFFF;
+// Obstacle cells and line features are numbered by 16-bit ids whose top values are markers.
+// No obstacle cell: in a cell_at table, as a nearest-cell answer, in a correspondence.
 constexpr std::uint16_t kNoCell = 0xFFFF;
+// No line feature: ObstacleCell::line of clutter. Cell ids and line ids never meet in one
+// variable, so the two markers sharing a value means nothing; no code relies on it.
+constexpr std::uint16_t kNoLine = 0xFFFF;
 
 struct ObstacleCell {
   std::int16_t x = 0;  // window-local cell coordinates
@@ -46,7 +50,7 @@ struct LineExtractorConfig {
   // Cells this close (Chebyshev) are linked into one component. 1 = 8-connected; 2 bridges the
   // one-cell gaps of walls seen at grazing angles, which otherwise fall apart into clutter.
   int link_radius_cells = 2;
-  float split_tolerance_cells = 1.5f;  // Douglas–Peucker epsilon (DESIGN: 1–1.5 cells)
+  float split_tolerance_cells = 1.5f;  // Douglas–Peucker epsilon, cells
   int min_support = 5;                 // fewer cells are clutter (chair legs), not a line
   // A leaf or merge fitting worse than this is not a line. A rasterised slanted wall alone has
   // ~0.3 cells; 1.5 cm range noise at 5 cm cells adds ~0.3 more.
@@ -67,7 +71,8 @@ struct LineExtractionStats {
 
 // `cells`: obstacle cells (their `line` fields are overwritten). `cell_at`: a w x h table holding,
 // for each obstacle cell's position, its index in `cells`, and kNoCell elsewhere.
-// `scratch`: at least cells.size() entries. `lines`: output capacity; returns the count used.
+// `scratch`: at least cells.size() + 2 * lines.size() entries. `lines`: output capacity (fewer
+// than 0xFFFE); returns the count used.
 int ExtractLines(Span<ObstacleCell> cells, const std::uint16_t* cell_at, int w, int h,
                  Span<std::uint16_t> scratch, Span<LineFeature> lines, const LineExtractorConfig& config,
                  LineExtractionStats* stats);

@@ -1,18 +1,22 @@
 #include "core/registration/plicp.hpp"
 
 #include <cmath>
+#include <cstdint>
 
 #include <Eigen/Cholesky>
+
+#include "core/base/assert.hpp"
 
 namespace dpcr {
 namespace {
 
 // Residual histogram for the trimming percentiles in O(points). Linear bins of gate/256 (2 mm at
 // the default gate) are fine enough: the threshold never goes below trim_floor_m (3 cm).
+// 16-bit counts (targets have fewer than 2^16 points): 512 bytes of stack.
 constexpr int kBins = 256;
 
 struct Histogram {
-  std::uint32_t count[kBins] = {};
+  std::uint16_t count[kBins] = {};
   std::uint32_t total = 0;
   void Add(float r, float inv_bin) {
     int b = static_cast<int>(r * inv_bin);
@@ -52,132 +56,158 @@ float Residual(const Correspondence& c, Point2 w) {
   return std::fabs(c.normal.x * w.x + c.normal.y * w.y - c.offset);
 }
 
+// Pass 1 of a fine-phase iteration: Censi's adaptive trim threshold, min(p95, 2 p70) of the
+// gated residuals, not below trim_floor_m (gate_m if nothing matched). With a non-empty `cache`
+// each point's correspondence is kept there for pass 2 (ref kNoCell: none).
+float TrimThreshold(const RegistrationReference& ref, Span<const Point2> target, const PointTransform& to_world,
+                    const PlicpConfig& config, CorrespondenceFn find, Span<Correspondence> cache) {
+  DPCR_ASSERT(target.size() <= UINT16_MAX);
+  Histogram hist;
+  const float bin_m = config.gate_m / kBins, inv_bin = 1.0f / bin_m;
+  for (std::size_t i = 0; i < target.size(); ++i) {
+    Correspondence corr;
+    const Point2 w = to_world(target[i]);
+    const bool found = find(ref, w, config, &corr);
+    if (!cache.empty()) cache[i] = found ? corr : Correspondence{};
+    if (!found) continue;
+    const float r = Residual(corr, w);
+    if (r <= config.gate_m) hist.Add(r, inv_bin);
+  }
+  if (hist.total == 0) return config.gate_m;
+  const float threshold = std::fmin(hist.Percentile(0.95f, bin_m), 2.0f * hist.Percentile(0.70f, bin_m));
+  return std::fmax(threshold, config.trim_floor_m);
+}
+
+// What pass 2 found at one pose.
+struct Linearisation {
+  NormalEquations ne;
+  std::uint32_t hash = 0;  // of the correspondence set, for the two-cycle stop
+  int inliers = 0;
+  float residual_sum = 0.0f;
+};
+
+// Pass 2: the normal equations of the point-to-line (or point-to-point) residuals below
+// `threshold`, Huber-weighted. Correspondences come from `cache` when it is non-empty.
+Linearisation Linearise(const RegistrationReference& ref, Span<const Point2> target, const Pose2& pose,
+                        float threshold, const PlicpConfig& config, CorrespondenceFn find,
+                        Span<const Correspondence> cache) {
+  const PointTransform to_world(pose);
+  // Local accumulators, not the returned struct's: `find` is an opaque call, and sums kept in the
+  // return slot would be stored and reloaded around every call.
+  NormalEquations ne;
+  std::uint32_t hash = 0;
+  int inliers = 0;
+  float residual_sum = 0.0f;
+  for (std::size_t i = 0; i < target.size(); ++i) {
+    Correspondence corr;
+    const Point2 w = to_world(target[i]);
+    if (!cache.empty()) {
+      corr = cache[i];
+      if (corr.ref == kNoCell) continue;
+    } else if (!find(ref, w, config, &corr)) {
+      continue;
+    }
+    hash = hash * 31u + corr.ref + 1u;
+    const float r_abs = Residual(corr, w);
+    if (r_abs > threshold || r_abs > config.gate_m) continue;
+    const float huber = r_abs <= config.huber_m ? 1.0f : config.huber_m / r_abs;
+    const float weight = corr.weight * huber;
+    const float rx = w.x - pose.x, ry = w.y - pose.y;  // d(w)/dθ = (-ry, rx)
+    ++inliers;
+    residual_sum += r_abs;
+    if (corr.point_to_point) {
+      ne.Add(weight, 1.0f, 0.0f, -ry, w.x - corr.q.x);
+      ne.Add(weight, 0.0f, 1.0f, rx, w.y - corr.q.y);
+    } else {
+      ne.Add(weight, corr.normal.x, corr.normal.y, -corr.normal.x * ry + corr.normal.y * rx,
+             corr.normal.x * w.x + corr.normal.y * w.y - corr.offset);
+    }
+  }
+  return Linearisation{ne, hash, inliers, residual_sum};
+}
+
+// The Gauss–Newton step from `pose`: the points' normal equations `h`, `g` plus the prior's.
+Eigen::Vector3f SolveStep(Eigen::Matrix3f h, Eigen::Vector3f g, const Pose2& pose, const PosePrior* prior) {
+  if (prior != nullptr) {
+    h(0, 0) += prior->info_xy;
+    h(1, 1) += prior->info_xy;
+    h(2, 2) += prior->info_theta;
+    g(0) += prior->info_xy * (pose.x - prior->pose.x);
+    g(1) += prior->info_xy * (pose.y - prior->pose.y);
+    g(2) += prior->info_theta * NormalizeAngle(pose.theta - prior->pose.theta);
+  }
+  // A tiny Levenberg damping keeps a degenerate system (corridor without prior) solvable.
+  h += Eigen::Matrix3f::Identity() * (1e-6f * h.trace() + 1e-9f);
+  return h.ldlt().solve(-g);
+}
+
+// The verdict: enough support, small residual, observable, plausible.
+// `result` holds the pose, Hessian and inlier statistics.
+Status Verdict(RegistrationResult* result, const Pose2& initial, const PosePrior* prior, const PlicpConfig& config) {
+  if (result->inliers < config.min_correspondences) return Status::kNotEnoughData;
+  // Smallest eigenvalue of the symmetric 2x2 translational block, closed form.
+  const Eigen::Matrix3f& h = result->hessian;
+  const float a = h(0, 0), b = h(0, 1), d = h(1, 1);
+  const float lambda_min = 0.5f * (a + d) - std::sqrt(0.25f * (a - d) * (a - d) + b * b);
+  result->translation_information = lambda_min / static_cast<float>(result->inliers);
+  result->degenerate = result->translation_information < config.min_translation_information;
+  const Pose2& pose = result->pose;
+  const Pose2 expected = prior != nullptr ? prior->pose : initial;
+  const bool plausible = std::hypot(pose.x - expected.x, pose.y - expected.y) <= config.max_correction_m &&
+                         std::fabs(NormalizeAngle(pose.theta - expected.theta)) <= config.max_correction_rad;
+  const bool ok = result->inlier_ratio >= config.min_inlier_ratio &&
+                  result->mean_residual_m <= config.max_mean_residual_m && plausible &&
+                  (!result->degenerate || prior != nullptr);
+  return ok ? Status::kOk : Status::kRejected;
+}
+
 }  // namespace
 
 RegistrationResult RunPlicp(const RegistrationReference& ref, Span<const Point2> target, Pose2 initial,
                             const PosePrior* prior, const PlicpConfig& config, CorrespondenceFn find,
                             Span<Correspondence> scratch) {
   RegistrationResult result;
-  const bool can_cache = scratch.size() >= target.size();
+  // The trimmed iterations keep pass 1's correspondences for pass 2 when scratch can hold them.
+  const Span<Correspondence> cache = scratch.size() >= target.size() ? Span<Correspondence>(scratch.data(), target.size())
+                                                                       : Span<Correspondence>();
   Pose2 pose = initial;
   std::uint32_t last_hash = 0, older_hash = 0;  // correspondence sets of the last two iterations
   bool fine_phase = false;
-  int inliers = 0;
-  float residual_sum = 0.0f;
-  Eigen::Matrix3f h_points = Eigen::Matrix3f::Zero();
+  Linearisation lin;
   for (int iter = 0; iter < config.max_iterations; ++iter) {
-    const float c = std::cos(pose.theta), s = std::sin(pose.theta);
-    const auto to_world = [&](Point2 p) { return Point2{c * p.x - s * p.y + pose.x, s * p.x + c * p.y + pose.y}; };
-    // Pass 1 (fine phase only): the residual distribution, for Censi's adaptive trim.
     // Trim only in the fine phase: while the pose still moves by centimetres, the residuals of a
     // correctly matched wall can all lie above 2 p70 (an offset along one axis shows only on the
     // walls across it), and trimming them would remove exactly the information needed.
-    float threshold = config.gate_m;
-    const bool cached = can_cache && config.trim && fine_phase;  // pass 1 fills scratch, pass 2 reads it
-    if (config.trim && fine_phase) {
-      Histogram hist;
-      const float bin_m = config.gate_m / kBins, inv_bin = 1.0f / bin_m;
-      for (std::size_t i = 0; i < target.size(); ++i) {
-        Correspondence corr;
-        const Point2 w = to_world(target[i]);
-        const bool found = find(ref, w, config, &corr);
-        if (cached) scratch[i] = found ? corr : Correspondence{};  // ref kNoCell: none
-        if (!found) continue;
-        const float r = Residual(corr, w);
-        if (r <= config.gate_m) hist.Add(r, inv_bin);
-      }
-      if (hist.total > 0) {
-        threshold = std::fmin(hist.Percentile(0.95f, bin_m), 2.0f * hist.Percentile(0.70f, bin_m));
-        threshold = std::fmax(threshold, config.trim_floor_m);
-      }
-    }
-    // Pass 2: the normal equations of the point-to-line (or point-to-point) residuals.
-    NormalEquations ne;
-    std::uint32_t hash = 0;
-    inliers = 0;
-    residual_sum = 0.0f;
-    for (std::size_t i = 0; i < target.size(); ++i) {
-      Correspondence corr;
-      const Point2 w = to_world(target[i]);
-      if (cached) {
-        corr = scratch[i];
-        if (corr.ref == kNoCell) continue;
-      } else if (!find(ref, w, config, &corr)) {
-        continue;
-      }
-      hash = hash * 31u + corr.ref + 1u;
-      const float r_abs = Residual(corr, w);
-      if (r_abs > threshold || r_abs > config.gate_m) continue;
-      const float huber = r_abs <= config.huber_m ? 1.0f : config.huber_m / r_abs;
-      const float weight = corr.weight * huber;
-      const float rx = w.x - pose.x, ry = w.y - pose.y;  // d(w)/dθ = (-ry, rx)
-      ++inliers;
-      residual_sum += r_abs;
-      if (corr.point_to_point) {
-        ne.Add(weight, 1.0f, 0.0f, -ry, w.x - corr.q.x);
-        ne.Add(weight, 0.0f, 1.0f, rx, w.y - corr.q.y);
-      } else {
-        ne.Add(weight, corr.normal.x, corr.normal.y, -corr.normal.x * ry + corr.normal.y * rx,
-               corr.normal.x * w.x + corr.normal.y * w.y - corr.offset);
-      }
-    }
-    Eigen::Matrix3f h = ne.H();
-    Eigen::Vector3f g = ne.g();
+    const bool trimmed = config.trim && fine_phase;
+    const Span<Correspondence> pass_cache = trimmed ? cache : Span<Correspondence>();
+    const float threshold =
+        trimmed ? TrimThreshold(ref, target, PointTransform(pose), config, find, pass_cache) : config.gate_m;
+    lin = Linearise(ref, target, pose, threshold, config, find,
+                    Span<const Correspondence>(pass_cache.data(), pass_cache.size()));
     result.iterations = iter + 1;
-    h_points = h;
-    if (inliers < 3) break;
-    if (prior != nullptr) {
-      h(0, 0) += prior->info_xy;
-      h(1, 1) += prior->info_xy;
-      h(2, 2) += prior->info_theta;
-      g(0) += prior->info_xy * (pose.x - prior->pose.x);
-      g(1) += prior->info_xy * (pose.y - prior->pose.y);
-      g(2) += prior->info_theta * NormalizeAngle(pose.theta - prior->pose.theta);
-    }
-    // A tiny Levenberg damping keeps a degenerate system (corridor without prior) solvable.
-    h += Eigen::Matrix3f::Identity() * (1e-6f * h.trace() + 1e-9f);
-    const Eigen::Vector3f step = h.ldlt().solve(-g);
+    result.hessian = lin.ne.H();
+    if (lin.inliers < 3) break;
+    const Eigen::Vector3f step = SolveStep(result.hessian, lin.ne.g(), pose, prior);
     pose.x += step(0);
     pose.y += step(1);
     pose.theta = NormalizeAngle(pose.theta + step(2));
     const float dt = std::hypot(step(0), step(1)), da = std::fabs(step(2));
     const bool was_fine = fine_phase;
     fine_phase = dt < config.fine_phase_step_m && da < config.fine_phase_step_rad;
-    if (!was_fine) {  // the stop tests below hold for the trimmed problem only
-      older_hash = last_hash;
-      last_hash = hash;
-      continue;
+    if (was_fine) {  // the stop tests hold for the trimmed problem only
+      if (dt < config.min_step_m && da < config.min_step_rad) break;
+      // Same set as one or two iterations ago (a two-cycle between neighbouring cells): converged.
+      const bool repeated = lin.hash == last_hash || lin.hash == older_hash;
+      if (repeated && dt < 10.0f * config.min_step_m && da < 10.0f * config.min_step_rad) break;
     }
-    if (dt < config.min_step_m && da < config.min_step_rad) break;
-    // Same set as one or two iterations ago (a two-cycle between neighbouring cells): converged.
-    const bool repeated = hash == last_hash || hash == older_hash;
-    if (repeated && dt < 10.0f * config.min_step_m && da < 10.0f * config.min_step_rad) break;
     older_hash = last_hash;
-    last_hash = hash;
+    last_hash = lin.hash;
   }
-
-  // Verdict (DESIGN §3 acceptance): enough support, small residual, observable, plausible.
   result.pose = pose;
-  result.hessian = h_points;
-  result.inliers = inliers;
-  result.inlier_ratio = target.empty() ? 0.0f : static_cast<float>(inliers) / static_cast<float>(target.size());
-  result.mean_residual_m = inliers > 0 ? residual_sum / static_cast<float>(inliers) : 0.0f;
-  if (inliers < config.min_correspondences) {
-    result.verdict = Status::kNotEnoughData;
-    return result;
-  }
-  // Smallest eigenvalue of the symmetric 2x2 translational block, closed form.
-  const float a = h_points(0, 0), b = h_points(0, 1), d = h_points(1, 1);
-  const float lambda_min = 0.5f * (a + d) - std::sqrt(0.25f * (a - d) * (a - d) + b * b);
-  result.translation_information = lambda_min / static_cast<float>(inliers);
-  result.degenerate = result.translation_information < config.min_translation_information;
-  const Pose2 expected = prior != nullptr ? prior->pose : initial;
-  const bool plausible = std::hypot(pose.x - expected.x, pose.y - expected.y) <= config.max_correction_m &&
-                         std::fabs(NormalizeAngle(pose.theta - expected.theta)) <= config.max_correction_rad;
-  const bool ok = result.inlier_ratio >= config.min_inlier_ratio &&
-                  result.mean_residual_m <= config.max_mean_residual_m && plausible &&
-                  (!result.degenerate || prior != nullptr);
-  result.verdict = ok ? Status::kOk : Status::kRejected;
+  result.inliers = lin.inliers;
+  result.inlier_ratio = target.empty() ? 0.0f : static_cast<float>(lin.inliers) / static_cast<float>(target.size());
+  result.mean_residual_m = lin.inliers > 0 ? lin.residual_sum / static_cast<float>(lin.inliers) : 0.0f;
+  result.verdict = Verdict(&result, initial, prior, config);
   return result;
 }
 

@@ -1,8 +1,8 @@
 // Improved PLICP (Cao et al. 2025, §3.2, Fig. 2b): the error of a target point is its distance to
 // the *line feature* owning its nearest reference cell, not to a line through two neighbouring
-// reference points (classic PLICP, Censi 2008, core/classic_plicp.hpp). Both share the solver here:
-// Gauss–Newton on (x, y, θ), distance gate, Censi's adaptive trimming, Huber kernel, optional
-// odometry prior, and an acceptance verdict. O(points) per iteration, no heap, no throw.
+// reference points (classic PLICP, Censi 2008, core/registration/classic_plicp.hpp). Both share the
+// solver here: Gauss–Newton on (x, y, θ), distance gate, Censi's adaptive trimming, Huber kernel,
+// optional odometry prior, and an acceptance verdict. O(points) per iteration, no heap, no throw.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +25,7 @@ struct PlicpConfig {
   float fine_phase_step_m = 0.01f;
   float fine_phase_step_rad = 0.005f;
   float huber_m = 0.03f;  // robust kernel: quadratic below, linear above
-  // Fallbacks for points whose nearest reference cell owns no line (DESIGN §3): a local line from
+  // Fallbacks for points whose nearest reference cell owns no line: a local line from
   // the cell's 5x5 normal, else point-to-point; down-weighted, they keep corridors constrained.
   float local_line_weight = 0.5f;
   float point_weight = 0.25f;

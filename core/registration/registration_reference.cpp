@@ -18,7 +18,8 @@ RegistrationReference::RegistrationReference(Span<ObstacleCell> cells, Span<std:
       refit_(refit),
       max_w_(max_w),
       max_h_(max_h) {
-  DPCR_ASSERT(nearest.size() == static_cast<std::size_t>(max_w * max_h) && scratch.size() >= cells.size());
+  DPCR_ASSERT(nearest.size() == static_cast<std::size_t>(max_w * max_h) &&
+              scratch.size() >= cells.size() + 2 * lines.size());
   DPCR_ASSERT(refit.empty() || refit.size() >= lines.size());
   DPCR_ASSERT(cells.size() < kNoneNear);
   const int blocks_x = (max_w + 7) >> kBlockShift, blocks_y = (max_h + 7) >> kBlockShift;
@@ -122,7 +123,7 @@ void RegistrationReference::AddGrid(const TiledGrid& grid, CellIndex offset, con
 
 void RegistrationReference::AddObstacleCell(int x, int y, std::uint16_t weight, ReferenceBuildStats* stats) {
   std::uint16_t& entry = nearest_[static_cast<std::size_t>(y * w_ + x)];
-  if (entry != kNoCell) {  // already an obstacle cell of an earlier grid: one cell, the larger weight
+  if (entry != kNotSearched) {  // already an obstacle cell of an earlier grid: one cell, the larger weight
     if (weight > cells_[entry].weight) cells_[entry].weight = weight;
     return;
   }

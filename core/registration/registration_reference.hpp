@@ -98,9 +98,13 @@ class RegistrationReference {
   float resolution_m() const { return res_; }
 
  private:
-  // Table entries besides cell indices: not searched yet (every entry but the obstacle cells'
-  // after a build, which hold their own index), and searched with no obstacle cell in the bound.
-  static constexpr std::uint16_t kNotSearched = kNoCell;
+  // Table entries besides cell indices. Not searched yet: every entry but the obstacle cells'
+  // after a build, which hold their own index. While a build runs the table is also the cell_at
+  // table of ComputeLocalNormals and ExtractLines (a cell's index, kNoCell elsewhere), and AddObstacleCell
+  // finds an earlier grid's cell by it: "not searched" must read as "no obstacle cell here".
+  static constexpr std::uint16_t kNotSearched = 0xFFFF;
+  static_assert(kNotSearched == kNoCell, "during a build the table is the line extractor's cell_at table");
+  // Searched, with no obstacle cell within the bound.
   static constexpr std::uint16_t kNoneNear = 0xFFFE;
   // Obstacle cells are also marked in 8 x 8-cell blocks, one bit per cell (bit 8 * ly + lx), and
   // the blocks holding any in one bit per block of a row of blocks (windows up to 512 cells).
@@ -136,18 +140,20 @@ class RegistrationReference {
 };
 
 // 256 x 256 window, 4096 cells, 512 lines: 128 KiB table + 8 KiB obstacle bits + 1 KiB of
-// block-row masks + 40 KiB cells/scratch + 28 KiB lines, + 12 KiB of point-refit sums when
+// block-row masks + 40 KiB cells + 10 KiB scratch + 30 KiB lines, + 12 KiB of point-refit sums when
 // kPointRefit (a reference built from a grid alone, e.g. a regional map's, has no raw points to
 // refit to and carries none).
 template <int kW, int kH, int kCells, int kLines, bool kPointRefit = true>
 class RegistrationReferenceStorage : public RegistrationReference {
-  static_assert(kCells < kNoCell - 1, "cell ids are 16-bit, two values are markers");
+  static_assert(kCells < 0xFFFE, "cell ids are 16-bit below the table's two markers (kNoneNear, kNotSearched)");
+  static_assert(kLines < 0xFFFE, "line ids are 16-bit below the line extractor's two markers");
   static constexpr int kBlocks = ((kW + 7) / 8) * ((kH + 7) / 8);
+  static constexpr int kScratch = kCells + 2 * kLines;  // ExtractLines: cells, then lines twice
 
  public:
   RegistrationReferenceStorage()
       : RegistrationReference(Span<ObstacleCell>(cells_, kCells), Span<std::uint16_t>(nearest_, kW * kH),
-                              Span<std::uint64_t>(obstacle_blocks_, kBlocks), Span<std::uint16_t>(scratch_, kCells),
+                              Span<std::uint64_t>(obstacle_blocks_, kBlocks), Span<std::uint16_t>(scratch_, kScratch),
                               Span<LineFeature>(lines_, kLines),
                               Span<RefitSums>(refit_, kPointRefit ? kLines : 0), kW, kH) {}
 
@@ -155,7 +161,7 @@ class RegistrationReferenceStorage : public RegistrationReference {
   ObstacleCell cells_[kCells];
   std::uint16_t nearest_[kW * kH];
   std::uint64_t obstacle_blocks_[kBlocks];
-  std::uint16_t scratch_[kCells];
+  std::uint16_t scratch_[kScratch];
   LineFeature lines_[kLines];
   RefitSums refit_[kPointRefit ? kLines : 1];  // C++ has no empty arrays: one unused entry
 };

@@ -1,11 +1,10 @@
-// StaticVector, RingBuffer and Pool against std containers, and their full behaviour.
+// StaticVector and RingBuffer against std containers, and their full behaviour.
 #include <catch2/catch.hpp>
 
 #include <deque>
 #include <random>
 #include <vector>
 
-#include "core/base/pool.hpp"
 #include "core/base/ring_buffer.hpp"
 #include "core/base/static_vector.hpp"
 
@@ -60,26 +59,4 @@ TEST_CASE("RingBuffer emplace_back returns nullptr when full") {
   REQUIRE(ring.emplace_back() == nullptr);
   REQUIRE(ring.front() == 1);
   REQUIRE(ring.back() == 2);
-}
-
-TEST_CASE("Pool hands out every slot once, reports full, and detects stale handles") {
-  dpcr::Pool<int, 4> pool;
-  dpcr::PoolHandle handles[4];
-  for (auto& h : handles) {
-    auto r = pool.Acquire();
-    REQUIRE(r.ok());
-    h = r.value();
-    *pool.Get(h) = h.index;
-  }
-  REQUIRE(pool.full());
-  REQUIRE(pool.Acquire().status() == Status::kPoolFull);
-  REQUIRE(pool.Release(handles[1]) == Status::kOk);
-  REQUIRE(pool.Get(handles[1]) == nullptr);
-  REQUIRE(pool.Release(handles[1]) == Status::kStaleHandle);
-  auto again = pool.Acquire();
-  REQUIRE(again.ok());
-  REQUIRE(again.value().index == handles[1].index);
-  REQUIRE_FALSE(again.value() == handles[1]);  // new generation
-  REQUIRE(*pool.Get(again.value()) == 0);     // reset to T()
-  REQUIRE(pool.Get(dpcr::PoolHandle{}) == nullptr);
 }

@@ -129,12 +129,12 @@ TEST_CASE("More obstacle cells than capacity are reported, not silently lost") {
   CHECK(f.ref->cell_count() == 4096);
 }
 
-TEST_CASE("One vacuum-profile reference (256x256 window, 4096 cells, 512 lines) stays within 228 KiB") {
+TEST_CASE("One vacuum-profile reference (256x256 window, 4096 cells, 512 lines) stays within 230 KiB") {
   using VacuumReference = dpcr::RegistrationReferenceStorage<dpcr::VacuumProfile::kSubmapSideCells,
                                                              dpcr::VacuumProfile::kSubmapSideCells, 4096,
                                                              dpcr::VacuumProfile::kMaxLines>;
   INFO("sizeof = " << sizeof(VacuumReference));
-  CHECK(sizeof(VacuumReference) <= 228u * 1024u);
+  CHECK(sizeof(VacuumReference) <= 230u * 1024u);  // 2 KiB of it: ExtractLines' line scratch, off the stack
 }
 
 TEST_CASE("More lines than capacity: the rest stay clutter and the build says so") {
