@@ -1,17 +1,32 @@
 #!/usr/bin/env bash
-# Installs what a fresh Debian 12 machine lacks to build and test dpcr.
+# Installs what a fresh Debian 12 machine lacks to build dpcr, in three levels:
+#   --host   build and run the host apps (scripts/demo.sh: dpcr-sim)
+#   --tests  + Catch2 and valgrind: the host test suite (scripts/test.sh, dpcr-bench)
+#   --all    + cross compilers, qemu-user and the bare-metal toolchain (.ci/run; the default)
 # Idempotent: installs only missing packages, and says nothing when all are present.
 set -euo pipefail
 
-packages=(
-  build-essential cmake ninja-build pkg-config git
-  libeigen3-dev                      # core: the only dependency
-  catch2                             # tests
-  libcli11-dev nlohmann-json3-dev libstb-dev   # host tools (header-only, so cross builds can use them too)
-  valgrind                           # instruction-count budgets (callgrind)
+level=${1:---all}
+host=(
+  build-essential cmake ninja-build
+  libeigen3-dev                                # core: the only dependency
+  libcli11-dev nlohmann-json3-dev libstb-dev   # host apps (header-only, so cross builds can use them too)
+)
+tests=(
+  catch2                             # unit tests
+  valgrind                           # instruction-count budgets (callgrind) and dpcr-bench
+)
+cross=(
+  git
   g++-arm-linux-gnueabihf g++-aarch64-linux-gnu qemu-user   # cross presets + tests under emulation
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib  # baremetal core check
 )
+case $level in
+  --host) packages=("${host[@]}") ;;
+  --tests) packages=("${host[@]}" "${tests[@]}") ;;
+  --all) packages=("${host[@]}" "${tests[@]}" "${cross[@]}") ;;
+  *) echo "usage: $0 [--host|--tests|--all]" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

@@ -4,16 +4,15 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
-#include <unistd.h>
 
 #include "core/mapper.hpp"
 #include "host_sim/drivers/device_files.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 using MapperType = dpcr::Mapper<dpcr::VacuumProfile>;
@@ -34,10 +33,8 @@ struct RoundTrip {
 };
 
 RoundTrip MapBothWays(bool registration) {
-  // One directory per process and case: parallel ctest runs (or two builds' runs) must not share files.
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("dpcr_round_trip_" + std::to_string(getpid()) + (registration ? "_front_end" : "_odometry"));
-  std::filesystem::create_directories(dir);
+  const dpcr::test::ScopedTempDir temp(registration ? "round_trip_front_end" : "round_trip_odometry");
+  const auto& dir = temp.path();
   dpcr::sim::SimConfig config;
   config.duration_min = 0.5;
   config.seed = 7;
@@ -101,7 +98,6 @@ RoundTrip MapBothWays(bool registration) {
     max_diff_m = std::max(max_diff_m, static_cast<double>(std::hypot(a.x - b.x, a.y - b.y)));
     max_diff_rad = std::max(max_diff_rad, static_cast<double>(std::fabs(dpcr::NormalizeAngle(a.theta - b.theta))));
   }
-  std::filesystem::remove_all(dir);
   return r;
 }
 

@@ -3,11 +3,11 @@
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "board/atomic_file.hpp"
 #include "board/socketcan_port.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <sys/socket.h>
 
@@ -21,13 +21,13 @@ std::string Slurp(const std::string& path) {
 }  // namespace
 
 TEST_CASE("atomic write replaces the file and leaves no temp file") {
-  const std::string path = "atomic_test.txt";
+  const dpcr::test::ScopedTempDir dir("atomic_file");
+  const std::string path = dir.str() + "/atomic_test.txt";
   std::string error;
   REQUIRE(dpcr::board::WriteFileAtomic(path, "first", 5, &error));
   REQUIRE(dpcr::board::WriteFileAtomic(path, "second", 6, &error));
   CHECK(Slurp(path) == "second");
   CHECK(::access((path + ".tmp").c_str(), F_OK) != 0);
-  ::unlink(path.c_str());
 }
 
 TEST_CASE("atomic write into a missing directory fails, naming the path and errno") {

@@ -11,7 +11,6 @@
 #include <sstream>
 #include <string>
 #include <sys/socket.h>
-#include <sys/stat.h>
 #include <termios.h>
 #include <thread>
 #include <unistd.h>
@@ -23,6 +22,7 @@
 #include "core/geometry/pose2.hpp"
 #include "hal/ld06_emitter.hpp"
 #include "hal/wheel_can_protocol.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 
@@ -108,7 +108,8 @@ TEST_CASE("firmware: a silent lidar is reported as a timeout, exit 2") {
   c.uart_device = pty.name;
   c.can_fd = sv[1];
   c.lidar_timeout_ms = 300;
-  c.map_dir = ".";
+  const dpcr::test::ScopedTempDir map_dir("firmware_timeout");  // the exit path saves a map
+  c.map_dir = map_dir.str();
   std::FILE* log = std::tmpfile();
   const auto start = std::chrono::steady_clock::now();
   CHECK(dpcr::board::RunFirmware(c, log) == 2);
@@ -125,10 +126,8 @@ TEST_CASE("firmware: pty lidar + socketpair CAN, SIGTERM saves a loadable map") 
   Pty pty;
   int sv[2];
   REQUIRE(::socketpair(AF_UNIX, SOCK_SEQPACKET, 0, sv) == 0);
-  const std::string dir = "firmware_test_map";
-  ::mkdir(dir.c_str(), 0755);
-  ::unlink((dir + "/map.pgm").c_str());
-  ::unlink((dir + "/map.yaml").c_str());
+  const dpcr::test::ScopedTempDir map_dir("firmware_map");
+  const std::string dir = map_dir.str();
   dpcr::board::FirmwareConfig c;
   c.uart_device = pty.name;
   c.can_fd = sv[1];

@@ -11,11 +11,11 @@
 #include "core/mapper.hpp"
 #include "host_sim/carmen/carmen_reader.hpp"
 #include "tests/budget/synthetic_run.hpp"
+#include "tools/public_logs.hpp"
 
 namespace {
 
 constexpr int kScans = 300;
-constexpr int kSkip = 77;  // ctest SKIP_RETURN_CODE
 
 template <class Profile>
 void PrintBudgets(int scans) {
@@ -27,14 +27,14 @@ void PrintBudgets(int scans) {
   std::printf("budget line_extraction %llu\n", static_cast<unsigned long long>(Profile::kBudgetLineExtractionInstr));
 }
 
-int RunIntel(const char* clf) {
+int RunIntel(const std::string& clf) {
   using MapperType = dpcr::Mapper<dpcr::BuildingProfile>;
   static MapperType mapper;
   static MapperType::ScanType scan;
   std::ifstream in(clf);
   if (!in) {
-    std::printf("SKIP: %s not found (CI keeps shared/ beside the repository)\n", clf);
-    return kSkip;
+    std::printf("SKIP: %s not found (set DPCR_DATA_DIR; README \"Public logs\")\n", clf.c_str());
+    return dpcr::kSkippedExitCode;
   }
   dpcr::carmen::CarmenReader reader(in);
   dpcr::carmen::Record rec;
@@ -87,9 +87,11 @@ int RunSynthetic(int beams) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc >= 3 && std::strcmp(argv[1], "building") == 0) return RunIntel(argv[2]);
+  if (argc >= 2 && std::strcmp(argv[1], "building") == 0) {
+    return RunIntel(argc >= 3 ? std::string(argv[2]) : dpcr::PublicLogPath("intel.clf"));
+  }
   if (argc >= 2 && std::strcmp(argv[1], "vacuum") == 0) return RunSynthetic<dpcr::VacuumProfile>(450);
   if (argc >= 2 && std::strcmp(argv[1], "tiny") == 0) return RunSynthetic<dpcr::TinyProfile>(256);
-  std::fprintf(stderr, "usage: %s building INTEL.clf | vacuum | tiny\n", argv[0]);
+  std::fprintf(stderr, "usage: %s building [INTEL.clf] | vacuum | tiny\n", argv[0]);
   return 2;
 }

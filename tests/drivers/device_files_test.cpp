@@ -4,10 +4,10 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
-#include <sys/stat.h>
 #include <vector>
 
 #include "host_sim/drivers/device_files.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 
@@ -50,8 +50,8 @@ Run MakeRun() {
 
 TEST_CASE("emit device files then replay gives the same scans and trajectory") {
   const Run run = MakeRun();
-  const std::string dir = "device_files_test_dir";
-  ::mkdir(dir.c_str(), 0755);
+  const dpcr::test::ScopedTempDir temp("device_files");
+  const std::string dir = temp.str();
   dpcr::DeviceFilesConfig files;
   {
     dpcr::DeviceEmitter emitter(files);

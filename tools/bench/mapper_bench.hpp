@@ -5,10 +5,12 @@
 
 #include <string>
 
+#include "tools/public_logs.hpp"
+
 namespace dpcr_bench {
 
 struct MapperBenchOptions {
-  std::string clf_path = "/work/shared/data/intel.clf";
+  std::string clf_path = dpcr::PublicLogPath("intel.clf");
   // A simulated world instead of the log (builtin name or world file), as dpcr-sim maps it.
   std::string world;
   double minutes = 5.0;

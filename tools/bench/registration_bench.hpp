@@ -4,10 +4,12 @@
 
 #include <string>
 
+#include "tools/public_logs.hpp"
+
 namespace dpcr_bench {
 
 struct RegistrationBenchOptions {
-  std::string clf_path = "/work/shared/data/intel.clf";
+  std::string clf_path = dpcr::PublicLogPath("intel.clf");
   int sim_poses_per_world = 12;
   int perturbations = 12;
   int intel_pairs = 120;
