@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "host_sim/output/map_files.hpp"
-#include "tools/eval/accuracy.hpp"
-#include "tools/eval/trajectory.hpp"
+#include "host_sim/eval/accuracy.hpp"
+#include "host_sim/eval/trajectory.hpp"
 
 namespace dpcr::output {
 

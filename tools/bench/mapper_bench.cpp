@@ -14,7 +14,7 @@
 #include "host_sim/carmen/carmen_reader.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
-#include "tools/eval/accuracy.hpp"
+#include "host_sim/eval/accuracy.hpp"
 
 namespace dpcr_bench {
 namespace {

@@ -1,4 +1,4 @@
-#include "tools/eval/trajectory.hpp"
+#include "host_sim/eval/trajectory.hpp"
 
 #include <cmath>
 #include <cstdio>

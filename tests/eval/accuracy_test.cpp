@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "tools/eval/accuracy.hpp"
+#include "host_sim/eval/accuracy.hpp"
 
 using dpcr::Pose2;
 using dpcr::eval::StampedPose;

@@ -1,4 +1,4 @@
-#include "tools/eval/accuracy.hpp"
+#include "host_sim/eval/accuracy.hpp"
 
 #include <algorithm>
 #include <cmath>
