@@ -5,6 +5,8 @@
 #include <cmath>
 #include <system_error>
 
+#include "host_sim/eval/stamp_text.hpp"
+
 namespace dpcr::carmen {
 namespace {
 
@@ -76,7 +78,7 @@ class Tokens {
   std::int64_t Stamp(const char* what, std::string* text) {
     const std::string_view w = Word(what);
     std::int64_t micros = 0;
-    if (!ParseStampMicros(w, &micros)) throw CarmenError(line_, std::string("bad ") + what + " '" + std::string(w) + "'");
+    if (!dpcr::eval::ParseStamp(w, &micros)) throw CarmenError(line_, std::string("bad ") + what + " '" + std::string(w) + "'");
     text->assign(w.data(), w.size());
     return micros;
   }
@@ -144,38 +146,6 @@ void ParseRobotLaser(Tokens& t, LaserRecord* r) {
 
 CarmenError::CarmenError(long line, const std::string& reason)
     : std::runtime_error("line " + std::to_string(line) + ": " + reason), line_(line) {}
-
-bool ParseStampMicros(std::string_view text, std::int64_t* micros) {
-  // 1-12 digits (seconds: no int64 overflow), optionally '.' and at most 9 more digits; rounded
-  // to the microsecond (logs give 6 decimals; more are tolerated).
-  const std::size_t dot = text.find('.');
-  const std::string_view whole = text.substr(0, dot);
-  const std::string_view frac = dot == std::string_view::npos ? std::string_view() : text.substr(dot + 1);
-  if (whole.empty() || whole.size() > 12 || frac.size() > 9) return false;
-  std::int64_t seconds = 0;
-  for (const char c : whole) {
-    if (c < '0' || c > '9') return false;
-    seconds = seconds * 10 + (c - '0');
-  }
-  std::int64_t us = 0;
-  for (std::size_t i = 0; i < 7; ++i) {
-    const char c = i < frac.size() ? frac[i] : '0';
-    if (c < '0' || c > '9') return false;
-    if (i < 6) us = us * 10 + (c - '0');
-    if (i == 6 && c >= '5') ++us;
-  }
-  for (std::size_t i = 7; i < frac.size(); ++i) {
-    if (frac[i] < '0' || frac[i] > '9') return false;
-  }
-  *micros = seconds * 1000000 + us;
-  return true;
-}
-
-std::int64_t ParseStampMicros(const std::string& text) {
-  std::int64_t micros = 0;
-  if (!ParseStampMicros(std::string_view(text), &micros)) throw std::invalid_argument("not a timestamp: " + text);
-  return micros;
-}
 
 bool CarmenReader::Next(Record* out) {
   std::string& text = line_;  // reused: no allocation per line once it has grown

@@ -82,9 +82,4 @@ class CarmenReader {
 // A whole word as a finite decimal number: the double strtod gives; false on anything else.
 bool ParseNumber(std::string_view text, double* value);
 
-// "976052857.337530" -> 976052857337530; throws std::invalid_argument on anything else.
-std::int64_t ParseStampMicros(const std::string& text);
-// The same without exceptions: false on anything but digits[.digits] (at most 9 decimals).
-bool ParseStampMicros(std::string_view text, std::int64_t* micros);
-
 }  // namespace dpcr::carmen

@@ -12,14 +12,6 @@ using dpcr::carmen::CarmenError;
 using dpcr::carmen::CarmenReader;
 using dpcr::carmen::Record;
 
-TEST_CASE("Timestamps parse to exact microseconds") {
-  REQUIRE(dpcr::carmen::ParseStampMicros("976052857.337530") == 976052857337530LL);
-  REQUIRE(dpcr::carmen::ParseStampMicros("12") == 12000000LL);
-  REQUIRE(dpcr::carmen::ParseStampMicros("1.0000005") == 1000001LL);
-  REQUIRE_THROWS(dpcr::carmen::ParseStampMicros("1e9"));
-  REQUIRE_THROWS(dpcr::carmen::ParseStampMicros("-1.5"));
-}
-
 TEST_CASE("FLASER, ODOM, PARAM and comment lines are read in file order") {
   std::istringstream log(
       "# a comment\n"
