@@ -26,7 +26,6 @@ struct Input {
   std::vector<dpcr::OdometrySample> odometry;
   std::vector<std::size_t> odometry_end;
   std::vector<typename MapperType::ScanType> scans;
-  std::vector<std::string> stamps;  // TUM stamps
   dpcr::eval::Trajectory truth;      // simulated runs: the true pose at each scan
 };
 
@@ -57,7 +56,6 @@ void LoadCarmen(const MapperBenchOptions& o, Input<MapperType>* in) {
       (void)scan.beams.push_back(b);
     }
     in->scans.push_back(scan);
-    in->stamps.push_back(laser.stamp_text);
     if (o.scans > 0 && static_cast<int>(in->scans.size()) == o.scans) break;
   }
   in->config.lidar.max_range_m = o.max_range_m;
@@ -81,9 +79,6 @@ void LoadSimulation(const MapperBenchOptions& o, Input<MapperType>* in) {
     in->odometry_end.push_back(in->odometry.size());
     in->scans.push_back(event.scan);
     in->truth.push_back({event.scan.stamp_us, event.truth.ToPose2()});
-    char stamp[32];
-    std::snprintf(stamp, sizeof(stamp), "%.6f", static_cast<double>(event.scan.stamp_us) * 1e-6);
-    in->stamps.push_back(stamp);
     if (o.scans > 0 && static_cast<int>(in->scans.size()) == o.scans) break;
   }
   in->config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
@@ -112,8 +107,8 @@ int Run(const MapperBenchOptions& o, Input<MapperType>& input) {
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
   std::vector<double> us;
   us.reserve(input.scans.size());
-  std::vector<dpcr::Pose2> poses;
-  poses.reserve(input.scans.size());
+  dpcr::eval::Trajectory estimate;
+  estimate.reserve(input.scans.size());
   const auto start = std::chrono::steady_clock::now();
   std::size_t next_odometry = 0;
   for (std::size_t i = 0; i < input.scans.size(); ++i) {
@@ -127,16 +122,12 @@ int Run(const MapperBenchOptions& o, Input<MapperType>& input) {
       CALLGRIND_DUMP_STATS;
     }
     us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
-    poses.push_back(mapper.pose());
+    estimate.push_back({input.scans[i].stamp_us, mapper.pose()});
   }
   const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!o.trajectory_path.empty()) {
     std::ofstream tum(o.trajectory_path);
-    for (std::size_t i = 0; i < poses.size(); ++i) {
-      const dpcr::Pose2& p = poses[i];
-      tum << input.stamps[i] << ' ' << p.x << ' ' << p.y << " 0 0 0 " << std::sin(p.theta / 2.0f) << ' '
-          << std::cos(p.theta / 2.0f) << '\n';
-    }
+    dpcr::eval::WriteTum(tum, estimate);
   }
   std::vector<double> sorted = us;
   std::sort(sorted.begin(), sorted.end());
@@ -147,8 +138,6 @@ int Run(const MapperBenchOptions& o, Input<MapperType>& input) {
               c.first_registrations, c.first_rejected, c.second_registrations, c.second_rejected, c.submap_line_builds,
               c.region_line_builds, mapper.region_count());
   if (!input.truth.empty()) {
-    dpcr::eval::Trajectory estimate;
-    for (std::size_t i = 0; i < poses.size(); ++i) estimate.push_back({input.scans[i].stamp_us, poses[i]});
     const dpcr::eval::AccuracyResult a = dpcr::eval::EvaluateAgainstGroundTruth(estimate, input.truth);
     std::printf("LocErr_ave %.3f m  ATE %.3f m  max %.3f m\n", a.loc_err_ave_m, a.ate_rmse_m, a.max_err_m);
   }
