@@ -75,11 +75,10 @@ class Tokens {
     }
     return static_cast<long>(v);
   }
-  std::int64_t Stamp(const char* what, std::string* text) {
+  std::int64_t Stamp(const char* what) {
     const std::string_view w = Word(what);
     std::int64_t micros = 0;
     if (!dpcr::eval::ParseStamp(w, &micros)) throw CarmenError(line_, std::string("bad ") + what + " '" + std::string(w) + "'");
-    text->assign(w.data(), w.size());
     return micros;
   }
   long line() const { return line_; }
@@ -115,7 +114,7 @@ void ParseFlaser(Tokens& t, LaserRecord* r) {
   r->angle_increment_rad = step_deg * kDegToRad;
   r->laser_pose = ReadPose(t, "laser pose");
   r->odom_pose = ReadPose(t, "odometry pose");
-  r->stamp_us = t.Stamp("ipc_timestamp", &r->stamp_text);
+  r->stamp_us = t.Stamp("ipc_timestamp");
   t.Word("hostname");
   t.Number("logger_timestamp");
 }
@@ -137,7 +136,7 @@ void ParseRobotLaser(Tokens& t, LaserRecord* r) {
   r->laser_pose = ReadPose(t, "laser pose");
   r->odom_pose = ReadPose(t, "robot pose");
   for (const char* what : {"tv", "rv", "forward safety distance", "side safety distance", "turn axis"}) t.Number(what);
-  r->stamp_us = t.Stamp("ipc_timestamp", &r->stamp_text);
+  r->stamp_us = t.Stamp("ipc_timestamp");
   t.Word("hostname");
   t.Number("logger_timestamp");
 }
@@ -162,7 +161,7 @@ bool CarmenReader::Next(Record* out) {
     const std::string_view kind = t.Kind();
     if (kind == "FLASER" || kind == "ROBOTLASER1") {
       out->kind = Record::Kind::kLaser;
-      // Field by field, so that ranges_m and stamp_text keep their capacity from record to record.
+      // Field by field, so that ranges_m keeps its capacity from record to record.
       LaserRecord& laser = out->laser;
       laser.line = line;
       laser.max_range_m = 0.0f;
@@ -183,7 +182,7 @@ bool CarmenReader::Next(Record* out) {
       out->odom.line = line;
       out->odom.pose = ReadPose(t, "odometry pose");
       for (const char* what : {"tv", "rv", "accel"}) t.Number(what);
-      out->odom.stamp_us = t.Stamp("ipc_timestamp", &odom_stamp_text_);
+      out->odom.stamp_us = t.Stamp("ipc_timestamp");
       ++counters_.odom_records;
       return true;
     }
