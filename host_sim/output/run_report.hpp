@@ -65,10 +65,4 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
   return j;
 }
 
-// Renders, then writes all outputs of a finished run.
-template <class MapperType>
-nlohmann::json FinishRun(const std::string& dir, const MapperType& mapper, const RunRecord& run) {
-  return WriteRunOutputs(dir, RenderFused(mapper), run, MapperMetrics(mapper));
-}
-
 }  // namespace dpcr::output
