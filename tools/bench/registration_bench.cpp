@@ -10,13 +10,13 @@
 #include <map>
 #include <memory>
 #include <random>
-#include <sstream>
 #include <vector>
 
 #include "core/registration/classic_plicp.hpp"
 #include "core/registration/plicp.hpp"
 #include "core/grid/ray_caster.hpp"
 #include "core/registration/registration_reference.hpp"
+#include "host_sim/carmen/carmen_reader.hpp"
 #include "tools/bench/figure.hpp"
 #include "tools/bench/sim_worlds.hpp"
 
@@ -178,26 +178,24 @@ struct ClfScan {
   Pose2 odom;
 };
 
+// The laser records of a CARMEN log, through host_sim's reader (empty when the file is missing).
 std::vector<ClfScan> ReadClf(const std::string& path) {
   std::vector<ClfScan> scans;
   std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("FLASER ", 0) != 0) continue;
-    std::istringstream ss(line.substr(7));
-    int n = 0;
-    ss >> n;
+  if (!in) return scans;
+  dpcr::carmen::CarmenReader reader(in);
+  dpcr::carmen::Record record;
+  while (reader.Next(&record)) {
+    if (record.kind != dpcr::carmen::Record::Kind::kLaser) continue;
+    const dpcr::carmen::LaserRecord& laser = record.laser;
     ClfScan s;
-    for (int i = 0; i < n; ++i) {
-      float r = 0.0f;
-      ss >> r;
-      const float a = -0.5f * dpcr::kPi + static_cast<float>(i) * kDeg;  // -90 deg, 1 deg steps
+    for (std::size_t i = 0; i < laser.ranges_m.size(); ++i) {
+      const float r = laser.ranges_m[i];
+      const float a = laser.angle_min_rad + static_cast<float>(i) * laser.angle_increment_rad;
       if (r > 0.05f && r < 20.0f) s.points.push_back(Point2{r * std::cos(a), r * std::sin(a)});
     }
-    float x, y, th;
-    ss >> x >> y >> th;
-    s.odom = Pose2{x, y, th};
-    if (ss) scans.push_back(s);
+    s.odom = laser.odom_pose;
+    scans.push_back(std::move(s));
   }
   return scans;
 }
