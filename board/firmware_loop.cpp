@@ -15,14 +15,13 @@
 #include "board/termios_uart.hpp"
 #include "core/capacity.hpp"
 #include "core/mapper.hpp"
+#include "hal/device_pipeline.hpp"
 #include "hal/map_export.hpp"
-#include "hal/wheel_can_protocol.hpp"
 
 namespace dpcr::board {
 namespace {
 
 using BoardMapper = Mapper<VacuumProfile>;
-using BoardScan = Scan<VacuumProfile::kMaxBeams>;
 
 // The one piece of process-global state: the write end of the self-pipe the signal handler
 // uses to wake poll() (a handler can only touch async-signal-safe things).
@@ -71,8 +70,19 @@ MapSaveResult SaveMap(const BoardMapper& mapper, const std::string& dir) {
   return r;
 }
 
-struct Rates {
+// The device pipeline's outputs into the mapper, scans counted for the status line.
+class MapperSink : public DeviceSink {
+ public:
+  explicit MapperSink(BoardMapper* mapper) : mapper_(mapper) {}
+  void AddOdometry(const OdometrySample& sample) override { mapper_->AddOdometry(sample); }
+  void AddScan(const DeviceScan& scan) override {
+    static_cast<void>(mapper_->AddScan(scan));  // rejections are counted by the mapper
+    ++scans;
+  }
   std::uint32_t scans = 0;
+
+ private:
+  BoardMapper* mapper_;
 };
 
 }  // namespace
@@ -115,28 +125,23 @@ int RunFirmware(const FirmwareConfig& config, std::FILE* log) {
 
   // The mapper and the scan buffers are allocated once here, never during the run.
   auto mapper = std::make_unique<BoardMapper>();
-  auto scan = std::make_unique<BoardScan>();
   MapperConfig mapper_config;
   if (mapper->Init(mapper_config) != Status::kOk) {
     std::fprintf(log, "dpcr-firmware: error: mapper configuration rejected\n");
     return 1;
   }
-  LidarStreamConfig lidar_config;
-  lidar_config.kind = config.lidar;
-  lidar_config.assembler.angle_map = config.angle_map;
-  auto lidar = std::make_unique<LidarStream>(lidar_config);
-  WheelCanDecoder wheels;
-  DiffDriveOdometry odometry(config.wheels);
-  DeviceTimeBase wheel_time;
-  GyroRate gyro;
-  bool have_gyro = false;
+  MapperSink sink(mapper.get());
+  DevicePipelineConfig pipeline_config;
+  pipeline_config.lidar.kind = config.lidar;
+  pipeline_config.lidar.assembler.angle_map = config.angle_map;
+  pipeline_config.wheels = config.wheels;
+  auto pipeline = std::make_unique<DevicePipeline>(pipeline_config, &sink);
 
   const std::int64_t start_us = MonotonicUs();
   std::int64_t next_status_us = start_us + config.status_period_ms * 1000LL;
   std::int64_t next_save_us = config.autosave_s > 0 ? start_us + config.autosave_s * 1000000LL : INT64_MAX;
   std::int64_t last_lidar_us = start_us;
   std::uint32_t scans_at_last_status = 0;
-  std::uint32_t scans = 0;
   bool uart_open = true;
   bool can_open = true;
   int exit_code = 0;
@@ -158,16 +163,8 @@ int RunFirmware(const FirmwareConfig& config, std::FILE* log) {
     if (ready > 0 && (fds[1].revents & (POLLIN | POLLHUP | POLLERR)) != 0) {
       const ssize_t n = ::read(uart, buffer, sizeof(buffer));
       if (n > 0) {
-        std::size_t used = 0;
-        while (used < static_cast<std::size_t>(n)) {
-          used += lidar->Feed(buffer + used, static_cast<std::size_t>(n) - used, now);
-          if (lidar->revolution_ready()) {
-            lidar->TakeScan(scan.get());
-            static_cast<void>(mapper->AddScan(*scan));  // rejections are counted by the mapper
-            ++scans;
-          }
-        }
-        if (lidar->last_packet_us() != 0) last_lidar_us = now;
+        pipeline->FeedAllLidar(buffer, static_cast<std::size_t>(n), now);
+        if (pipeline->last_lidar_packet_us() != 0) last_lidar_us = now;
       } else if (n == 0 || (errno != EAGAIN && errno != EINTR)) {
         std::fprintf(log, "dpcr-firmware: error: lidar UART %s: %s\n", config.uart_device.c_str(),
                      n == 0 ? "end of file" : std::strerror(errno));
@@ -185,16 +182,7 @@ int RunFirmware(const FirmwareConfig& config, std::FILE* log) {
           can_open = false;
           break;
         }
-        const CanDecodeResult d = wheels.Feed(frame);
-        if (d == CanDecodeResult::kGyro) {
-          gyro = wheels.gyro();
-          have_gyro = true;
-        } else if (d == CanDecodeResult::kTicks) {
-          OdometrySample sample = odometry.Update(wheels.ticks(), wheel_time.ToHostUs(wheels.ticks().device_time_us, now));
-          sample.has_gyro = have_gyro;
-          sample.gyro_yaw_rate = gyro.yaw_rate_rad_s;
-          mapper->AddOdometry(sample);
-        }
+        pipeline->FeedCan(frame, now);
       }
     }
     if (now - last_lidar_us > config.lidar_timeout_ms * 1000LL) {
@@ -205,19 +193,20 @@ int RunFirmware(const FirmwareConfig& config, std::FILE* log) {
     }
     if (now >= next_status_us) {
       const double period_s = static_cast<double>(config.status_period_ms) / 1000.0;
-      const LidarStreamCounters lc = lidar->counters();
-      const WheelCanCounters cc = wheels.counters();
+      const DevicePipelineCounters counters = pipeline->counters();
+      const LidarStreamCounters& lc = counters.lidar;
+      const WheelCanCounters& cc = counters.can;
       const Pose2 pose = mapper->pose();
       std::fprintf(log,
                    "dpcr-firmware: t=%.1fs scan_rate=%.1f/s packets=%u bad=%u resyncs=%u gaps=%u "
                    "can_lost=%u dup=%u reord=%u err=%u pose=(%.3f,%.3f,%.3f) mapper=%s\n",
                    static_cast<double>(now - start_us) / 1e6,
-                   static_cast<double>(scans - scans_at_last_status) / period_s, lc.packets, lc.bad_packets,
+                   static_cast<double>(sink.scans - scans_at_last_status) / period_s, lc.packets, lc.bad_packets,
                    lc.resyncs, lc.gaps, cc.lost, cc.duplicated, cc.reordered, cc.error_frames,
                    static_cast<double>(pose.x), static_cast<double>(pose.y), static_cast<double>(pose.theta),
                    ToString(mapper->status()));
       std::fflush(log);
-      scans_at_last_status = scans;
+      scans_at_last_status = sink.scans;
       next_status_us = now + config.status_period_ms * 1000LL;
     }
     if (now >= next_save_us) {
@@ -230,7 +219,7 @@ int RunFirmware(const FirmwareConfig& config, std::FILE* log) {
   const MapSaveResult saved = SaveMap(*mapper, config.map_dir);
   if (saved.ok) {
     std::fprintf(log, "dpcr-firmware: map saved to %s/map.pgm (%dx%d), %u scans\n", config.map_dir.c_str(),
-                 saved.width, saved.height, scans);
+                 saved.width, saved.height, sink.scans);
   } else {
     std::fprintf(log, "dpcr-firmware: error: map not saved: %s\n", saved.error.c_str());
     if (exit_code == 0) exit_code = 1;

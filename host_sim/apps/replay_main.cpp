@@ -131,6 +131,21 @@ int ReplayCarmen(const Options& opt) {
   return 0;
 }
 
+// The device replay's outputs into the mapper, each AddScan timed and its pose recorded.
+template <class MapperType>
+class TimedMapperSink : public dpcr::DeviceSink {
+ public:
+  TimedMapperSink(MapperType* mapper, dpcr::output::RunRecord* run) : mapper_(mapper), run_(run) {}
+  void AddOdometry(const dpcr::OdometrySample& sample) override { mapper_->AddOdometry(sample); }
+  void AddScan(const dpcr::DeviceScan& scan) override {
+    dpcr::output::AddTimedScan(*mapper_, scan, run_);  // a DeviceScan is the mapper's scan type
+  }
+
+ private:
+  MapperType* mapper_;
+  dpcr::output::RunRecord* run_;
+};
+
 // dpcr-replay --uart --candump: the whole device decode path (LD06/XV-11 bytes, CAN wheel frames).
 template <class Profile>
 int ReplayDevice(const Options& opt) {
@@ -141,21 +156,16 @@ int ReplayDevice(const Options& opt) {
   dpcr::LidarStreamConfig lidar;
   lidar.kind = opt.lidar == "xv11" ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06;
   lidar.assembler.angle_map = files.angle_map;
-  dpcr::DeviceReplay replay(files, lidar);
+  dpcr::output::RunRecord run;
+  TimedMapperSink<MapperType> sink(&mapper, &run);
+  dpcr::DeviceReplay replay(files, lidar, &sink);
   std::string error;
   if (!replay.Open(opt.uart, opt.candump, &error)) throw std::runtime_error(error);
   dpcr::MapperConfig config;
   config.front_end.enable_registration = !opt.odometry_only;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
   const auto start = Clock::now();
-  dpcr::output::RunRecord run;
-  for (auto e = replay.Next(); e != dpcr::DeviceReplay::Event::kEnd; e = replay.Next()) {
-    if (e == dpcr::DeviceReplay::Event::kOdometry) {
-      mapper.AddOdometry(replay.odometry());
-      continue;
-    }
-    dpcr::output::AddTimedScan(mapper, replay.scan(), &run);  // a DeviceScan is the mapper's scan type
-  }
+  replay.Run();
   if (run.estimate.empty()) throw std::runtime_error(opt.uart + ": no complete lidar revolution decoded");
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   std::filesystem::create_directories(opt.out);
