@@ -142,6 +142,10 @@ CanRead CandumpSource::Read() {
     r.status = IoStatus::kEndOfStream;
     return r;
   }
+  if (clock_ != nullptr && records_[next_].stamp_us > clock_->NowUs()) {
+    r.status = IoStatus::kWouldBlock;
+    return r;
+  }
   r.frame = records_[next_].frame;
   r.stamp_us = records_[next_].stamp_us;
   ++next_;

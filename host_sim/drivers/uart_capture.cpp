@@ -115,6 +115,10 @@ ByteRead UartCaptureSource::Read(std::uint8_t* buffer, std::size_t capacity) {
     r.status = IoStatus::kEndOfStream;
     return r;
   }
+  if (clock_ != nullptr && chunks_[chunk_].stamp_us > clock_->NowUs()) {
+    r.status = IoStatus::kWouldBlock;
+    return r;
+  }
   const UartChunk& c = chunks_[chunk_];
   const std::size_t n = c.bytes.size() - offset_ < capacity ? c.bytes.size() - offset_ : capacity;
   std::memcpy(buffer, c.bytes.data() + offset_, n);
