@@ -12,6 +12,7 @@
 
 #include "core/mapper.hpp"
 #include "host_sim/carmen/carmen_reader.hpp"
+#include "host_sim/carmen/laser_scan.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
 #include "host_sim/eval/accuracy.hpp"
@@ -32,7 +33,6 @@ struct Input {
 // Same feeding as dpcr-replay --carmen (odometry "laser", decimation beyond kMaxBeams).
 template <class MapperType>
 void LoadCarmen(const MapperBenchOptions& o, Input<MapperType>* in) {
-  using Profile = typename MapperType::ProfileType;
   std::ifstream file(o.clf_path);
   if (!file) throw std::runtime_error(o.clf_path + ": cannot open");
   dpcr::carmen::CarmenReader reader(file);
@@ -46,15 +46,7 @@ void LoadCarmen(const MapperBenchOptions& o, Input<MapperType>* in) {
     in->odometry.push_back(s);
     in->odometry_end.push_back(in->odometry.size());
     typename MapperType::ScanType scan;
-    scan.stamp_us = laser.stamp_us;
-    const std::size_t n = laser.ranges_m.size();
-    const std::size_t stride = (n + Profile::kMaxBeams - 1) / Profile::kMaxBeams;
-    for (std::size_t i = 0; i < n; i += stride) {
-      dpcr::Beam b;
-      b.angle_rad = laser.angle_min_rad + static_cast<float>(i) * laser.angle_increment_rad;
-      b.range_m = laser.ranges_m[i];
-      (void)scan.beams.push_back(b);
-    }
+    (void)dpcr::carmen::ToScan(laser, &scan);
     in->scans.push_back(scan);
     if (o.scans > 0 && static_cast<int>(in->scans.size()) == o.scans) break;
   }
