@@ -58,4 +58,9 @@ bool WriteFileAtomic(const std::string& path, const void* data, std::size_t size
   return ok ? true : Fail(dir, "fsync directory", error);
 }
 
+IoStatus AtomicFileStore::Write(const char* name, const std::uint8_t* data, std::size_t size) {
+  if (WriteFileAtomic(dir_ + "/" + name, data, size, &last_error_)) return IoStatus::kOk;
+  return IoStatus::kIoError;
+}
+
 }  // namespace dpcr::board

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fcntl.h>
 #include <linux/can.h>
 #include <linux/can/error.h>
 #include <linux/can/raw.h>
@@ -80,6 +81,27 @@ IoStatus WriteCanFrame(int fd, const CanFrame& frame) {
   const ssize_t n = ::write(fd, &raw, sizeof(raw));
   if (n == static_cast<ssize_t>(sizeof(raw))) return IoStatus::kOk;
   return (n < 0 && errno == EAGAIN) ? IoStatus::kWouldBlock : IoStatus::kIoError;
+}
+
+bool SocketCanPort::Open(const std::string& interface, std::string* error) {
+  owned_.Reset(OpenSocketCan(interface, error));
+  fd_ = owned_.get();
+  return fd_ >= 0;
+}
+
+void SocketCanPort::Borrow(int fd) {
+  owned_.Reset();
+  fd_ = fd;
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
+}
+
+CanRead SocketCanPort::Read() {
+  CanRead r;
+  r.status = ReadCanFrame(fd_, &r.frame);
+  const int saved = errno;  // kIoError keeps the read's errno
+  r.stamp_us = clock_->NowUs();
+  errno = saved;
+  return r;
 }
 
 }  // namespace dpcr::board

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "board/unique_fd.hpp"
 #include "hal/can_frame.hpp"
 #include "hal/ports.hpp"
 
@@ -18,5 +19,23 @@ int OpenSocketCan(const std::string& interface, std::string* error);
 IoStatus ReadCanFrame(int fd, CanFrame* frame);
 // Writes one struct can_frame (tests, vcan smoke).
 IoStatus WriteCanFrame(int fd, const CanFrame& frame);
+
+// The wheel-encoder CAN bus as the firmware's CanSource: each frame stamped with `clock` when
+// it is read.
+class SocketCanPort : public CanSource {
+ public:
+  explicit SocketCanPort(const Clock* clock) : clock_(clock) {}
+  // Opens (and owns) a CAN_RAW socket on `interface`; false with the reason in `error`.
+  bool Open(const std::string& interface, std::string* error);
+  // Reads from an fd opened elsewhere (tests: a socketpair end), made non-blocking, never closed here.
+  void Borrow(int fd);
+  int fd() const { return fd_; }  // to wait on with poll()
+  CanRead Read() override;
+
+ private:
+  const Clock* clock_;
+  UniqueFd owned_;
+  int fd_ = -1;
+};
 
 }  // namespace dpcr::board

@@ -43,4 +43,25 @@ int OpenLidarUart(const std::string& device, int baud, std::string* error) {
   return fd;
 }
 
+bool TermiosUart::Open(const std::string& device, int baud, std::string* error) {
+  fd_.Reset(OpenLidarUart(device, baud, error));
+  return fd_.get() >= 0;
+}
+
+ByteRead TermiosUart::Read(std::uint8_t* buffer, std::size_t capacity) {
+  ByteRead r;
+  const ssize_t n = ::read(fd_.get(), buffer, capacity);
+  if (n > 0) {
+    r.size = static_cast<std::size_t>(n);
+  } else if (n == 0) {
+    r.status = IoStatus::kEndOfStream;
+  } else {
+    r.status = (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) ? IoStatus::kWouldBlock : IoStatus::kIoError;
+  }
+  const int saved = errno;  // kIoError keeps the read's errno
+  r.stamp_us = clock_->NowUs();
+  errno = saved;
+  return r;
+}
+
 }  // namespace dpcr::board

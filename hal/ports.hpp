@@ -1,6 +1,7 @@
-// Port interfaces between the application and its devices; board/ implements them with
-// termios, SocketCAN and files, host_sim/ with capture files. Decoders depend on none of them.
-// Small abstract classes (one virtual call per read, not per byte).
+// Port interfaces between the firmware (board/firmware.hpp) and its devices. board/ implements
+// them on Linux: TermiosUart, SocketCanPort, MonotonicClock, AtomicFileStore; host_sim/drivers
+// with recordings: UartCaptureSource, CandumpSource, ReplayClock. Decoders depend on none of
+// them. Small abstract classes (one virtual call per read, not per byte).
 #pragma once
 
 #include <cstddef>

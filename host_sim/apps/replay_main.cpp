@@ -11,6 +11,7 @@
 #include "core/mapper.hpp"
 #include "host_sim/apps/progress.hpp"
 #include "host_sim/carmen/carmen_reader.hpp"
+#include "host_sim/carmen/laser_scan.hpp"
 #include "host_sim/drivers/device_files.hpp"
 #include "host_sim/output/run_report.hpp"
 
@@ -46,68 +47,51 @@ void PrintSummary(const dpcr::output::RunRecord& run, const nlohmann::json& metr
   std::fprintf(stderr, " -> %s/\n", out.c_str());
 }
 
-template <class Profile>
-int ReplayCarmen(const Options& opt) {
-  using MapperType = dpcr::Mapper<Profile>;
-  static MapperType mapper;  // ~MiBs: static storage, as on the robot
-  static typename MapperType::ScanType scan;
+// The mapper for a CARMEN log: the lidar mount from --laser-offset, else from the log's PARAM.
+dpcr::MapperConfig CarmenMapperConfig(const Options& opt, float log_laser_offset_m) {
+  dpcr::MapperConfig config;
+  config.lidar.max_range_m = opt.max_range_m;
+  config.front_end.enable_registration = !opt.odometry_only;
+  const float offset = std::isnan(opt.laser_offset_m) ? log_laser_offset_m : opt.laser_offset_m;
+  config.lidar.mount = dpcr::Pose2{offset, 0.0f, 0.0f};
+  return config;
+}
 
-  std::ifstream in(opt.carmen);
-  if (!in) throw std::runtime_error(opt.carmen + ": cannot open");
+dpcr::OdometrySample Odometry(std::int64_t stamp_us, dpcr::Pose2 pose) {
+  dpcr::OdometrySample s;
+  s.stamp_us = stamp_us;
+  s.pose = pose;
+  return s;
+}
+
+// Maps a whole CARMEN log; returns how many scans had to be decimated. CarmenError becomes a
+// runtime_error naming the file and line.
+template <class MapperType>
+long MapCarmenLog(const Options& opt, std::ifstream& in, MapperType* mapper, dpcr::carmen::CarmenReader* reader,
+                  dpcr::output::RunRecord* run) {
+  static typename MapperType::ScanType scan;  // ~MiBs for big profiles: not on the stack
   const auto file_size = std::filesystem::file_size(opt.carmen);
-  std::vector<dpcr::eval::Relation> relations;
-  if (!opt.relations.empty()) relations = dpcr::eval::ReadRelationsFile(opt.relations);
-
-  const auto start = Clock::now();
-  dpcr::carmen::CarmenReader reader(in);
   dpcr::carmen::Record rec;
-  dpcr::output::RunRecord run;
   bool configured = false;
   dpcr::apps::Progress progress("replay");
   long decimated_scans = 0;
   try {
-    while (reader.Next(&rec)) {
-      if (!configured) {
-        // PARAM lines come first in CARMEN logs; the mount is fixed at the first record.
-        dpcr::MapperConfig config;
-        config.lidar.max_range_m = opt.max_range_m;
-        config.front_end.enable_registration = !opt.odometry_only;
-        const float offset = std::isnan(opt.laser_offset_m) ? reader.front_laser_offset_m() : opt.laser_offset_m;
-        config.lidar.mount = dpcr::Pose2{offset, 0.0f, 0.0f};
-        if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
+    while (reader->Next(&rec)) {
+      if (!configured) {  // PARAM lines come first in CARMEN logs; the mount is fixed at the first record
+        if (mapper->Init(CarmenMapperConfig(opt, reader->front_laser_offset_m())) != dpcr::Status::kOk) {
+          throw std::runtime_error("invalid mapper configuration");
+        }
         configured = true;
       }
       if (rec.kind == dpcr::carmen::Record::Kind::kOdom) {
-        if (opt.odometry == "odom") {
-          dpcr::OdometrySample s;
-          s.stamp_us = rec.odom.stamp_us;
-          s.pose = rec.odom.pose;
-          mapper.AddOdometry(s);
-        }
+        if (opt.odometry == "odom") mapper->AddOdometry(Odometry(rec.odom.stamp_us, rec.odom.pose));
         continue;
       }
-      const dpcr::carmen::LaserRecord& laser = rec.laser;
-      if (opt.odometry == "laser") {
-        // The odometry pose logged with the scan: exactly aligned in time with it.
-        dpcr::OdometrySample s;
-        s.stamp_us = laser.stamp_us;
-        s.pose = laser.odom_pose;
-        mapper.AddOdometry(s);
-      }
-      scan.stamp_us = laser.stamp_us;
-      scan.beams.clear();
-      // More beams than the profile holds: keep every k-th (decimation, not truncation).
-      const std::size_t n = laser.ranges_m.size();
-      const std::size_t stride = (n + Profile::kMaxBeams - 1) / Profile::kMaxBeams;
-      if (stride > 1) ++decimated_scans;
-      for (std::size_t i = 0; i < n; i += stride) {
-        dpcr::Beam b;
-        b.angle_rad = laser.angle_min_rad + static_cast<float>(i) * laser.angle_increment_rad;
-        b.range_m = laser.ranges_m[i];
-        (void)scan.beams.push_back(b);
-      }
-      dpcr::output::AddTimedScan(mapper, scan, &run);
-      if ((run.estimate.size() & 63) == 0) progress.Update(static_cast<double>(in.tellg()) / static_cast<double>(file_size));
+      // The odometry pose logged with the scan: exactly aligned in time with it.
+      if (opt.odometry == "laser") mapper->AddOdometry(Odometry(rec.laser.stamp_us, rec.laser.odom_pose));
+      if (dpcr::carmen::ToScan(rec.laser, &scan)) ++decimated_scans;
+      dpcr::output::AddTimedScan(*mapper, scan, run);
+      if ((run->estimate.size() & 63) == 0) progress.Update(static_cast<double>(in.tellg()) / static_cast<double>(file_size));
     }
   } catch (const dpcr::carmen::CarmenError& e) {
     progress.Done();
@@ -115,6 +99,23 @@ int ReplayCarmen(const Options& opt) {
                              std::string(e.what()).substr(std::string(e.what()).find(':') + 2));
   }
   progress.Done();
+  return decimated_scans;
+}
+
+template <class Profile>
+int ReplayCarmen(const Options& opt) {
+  using MapperType = dpcr::Mapper<Profile>;
+  static MapperType mapper;  // ~MiBs: static storage, as on the robot
+
+  std::ifstream in(opt.carmen);
+  if (!in) throw std::runtime_error(opt.carmen + ": cannot open");
+  std::vector<dpcr::eval::Relation> relations;
+  if (!opt.relations.empty()) relations = dpcr::eval::ReadRelationsFile(opt.relations);
+
+  const auto start = Clock::now();
+  dpcr::carmen::CarmenReader reader(in);
+  dpcr::output::RunRecord run;
+  const long decimated_scans = MapCarmenLog(opt, in, &mapper, &reader, &run);
   if (run.estimate.empty()) throw std::runtime_error(opt.carmen + ": no laser scans in the log");
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   if (!opt.relations.empty()) run.relations = &relations;
@@ -132,6 +133,21 @@ int ReplayCarmen(const Options& opt) {
   return 0;
 }
 
+// The device replay's outputs into the mapper, each AddScan timed and its pose recorded.
+template <class MapperType>
+class TimedMapperSink : public dpcr::DeviceSink {
+ public:
+  TimedMapperSink(MapperType* mapper, dpcr::output::RunRecord* run) : mapper_(mapper), run_(run) {}
+  void AddOdometry(const dpcr::OdometrySample& sample) override { mapper_->AddOdometry(sample); }
+  void AddScan(const dpcr::DeviceScan& scan) override {
+    dpcr::output::AddTimedScan(*mapper_, scan, run_);  // a DeviceScan is the mapper's scan type
+  }
+
+ private:
+  MapperType* mapper_;
+  dpcr::output::RunRecord* run_;
+};
+
 // dpcr-replay --uart --candump: the whole device decode path (LD06/XV-11 bytes, CAN wheel frames).
 template <class Profile>
 int ReplayDevice(const Options& opt) {
@@ -142,21 +158,16 @@ int ReplayDevice(const Options& opt) {
   dpcr::LidarStreamConfig lidar;
   lidar.kind = opt.lidar == "xv11" ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06;
   lidar.assembler.angle_map = files.angle_map;
-  dpcr::DeviceReplay replay(files, lidar);
+  dpcr::output::RunRecord run;
+  TimedMapperSink<MapperType> sink(&mapper, &run);
+  dpcr::DeviceReplay replay(files, lidar, &sink);
   std::string error;
   if (!replay.Open(opt.uart, opt.candump, &error)) throw std::runtime_error(error);
   dpcr::MapperConfig config;
   config.front_end.enable_registration = !opt.odometry_only;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
   const auto start = Clock::now();
-  dpcr::output::RunRecord run;
-  for (auto e = replay.Next(); e != dpcr::DeviceReplay::Event::kEnd; e = replay.Next()) {
-    if (e == dpcr::DeviceReplay::Event::kOdometry) {
-      mapper.AddOdometry(replay.odometry());
-      continue;
-    }
-    dpcr::output::AddTimedScan(mapper, replay.scan(), &run);  // a DeviceScan is the mapper's scan type
-  }
+  replay.Run();
   if (run.estimate.empty()) throw std::runtime_error(opt.uart + ": no complete lidar revolution decoded");
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   std::filesystem::create_directories(opt.out);

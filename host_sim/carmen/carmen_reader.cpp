@@ -5,6 +5,8 @@
 #include <cmath>
 #include <system_error>
 
+#include "host_sim/eval/stamp_text.hpp"
+
 namespace dpcr::carmen {
 namespace {
 
@@ -73,11 +75,10 @@ class Tokens {
     }
     return static_cast<long>(v);
   }
-  std::int64_t Stamp(const char* what, std::string* text) {
+  std::int64_t Stamp(const char* what) {
     const std::string_view w = Word(what);
     std::int64_t micros = 0;
-    if (!ParseStampMicros(w, &micros)) throw CarmenError(line_, std::string("bad ") + what + " '" + std::string(w) + "'");
-    text->assign(w.data(), w.size());
+    if (!dpcr::eval::ParseStamp(w, &micros)) throw CarmenError(line_, std::string("bad ") + what + " '" + std::string(w) + "'");
     return micros;
   }
   long line() const { return line_; }
@@ -113,7 +114,7 @@ void ParseFlaser(Tokens& t, LaserRecord* r) {
   r->angle_increment_rad = step_deg * kDegToRad;
   r->laser_pose = ReadPose(t, "laser pose");
   r->odom_pose = ReadPose(t, "odometry pose");
-  r->stamp_us = t.Stamp("ipc_timestamp", &r->stamp_text);
+  r->stamp_us = t.Stamp("ipc_timestamp");
   t.Word("hostname");
   t.Number("logger_timestamp");
 }
@@ -135,7 +136,7 @@ void ParseRobotLaser(Tokens& t, LaserRecord* r) {
   r->laser_pose = ReadPose(t, "laser pose");
   r->odom_pose = ReadPose(t, "robot pose");
   for (const char* what : {"tv", "rv", "forward safety distance", "side safety distance", "turn axis"}) t.Number(what);
-  r->stamp_us = t.Stamp("ipc_timestamp", &r->stamp_text);
+  r->stamp_us = t.Stamp("ipc_timestamp");
   t.Word("hostname");
   t.Number("logger_timestamp");
 }
@@ -144,38 +145,6 @@ void ParseRobotLaser(Tokens& t, LaserRecord* r) {
 
 CarmenError::CarmenError(long line, const std::string& reason)
     : std::runtime_error("line " + std::to_string(line) + ": " + reason), line_(line) {}
-
-bool ParseStampMicros(std::string_view text, std::int64_t* micros) {
-  // 1-12 digits (seconds: no int64 overflow), optionally '.' and at most 9 more digits; rounded
-  // to the microsecond (logs give 6 decimals; more are tolerated).
-  const std::size_t dot = text.find('.');
-  const std::string_view whole = text.substr(0, dot);
-  const std::string_view frac = dot == std::string_view::npos ? std::string_view() : text.substr(dot + 1);
-  if (whole.empty() || whole.size() > 12 || frac.size() > 9) return false;
-  std::int64_t seconds = 0;
-  for (const char c : whole) {
-    if (c < '0' || c > '9') return false;
-    seconds = seconds * 10 + (c - '0');
-  }
-  std::int64_t us = 0;
-  for (std::size_t i = 0; i < 7; ++i) {
-    const char c = i < frac.size() ? frac[i] : '0';
-    if (c < '0' || c > '9') return false;
-    if (i < 6) us = us * 10 + (c - '0');
-    if (i == 6 && c >= '5') ++us;
-  }
-  for (std::size_t i = 7; i < frac.size(); ++i) {
-    if (frac[i] < '0' || frac[i] > '9') return false;
-  }
-  *micros = seconds * 1000000 + us;
-  return true;
-}
-
-std::int64_t ParseStampMicros(const std::string& text) {
-  std::int64_t micros = 0;
-  if (!ParseStampMicros(std::string_view(text), &micros)) throw std::invalid_argument("not a timestamp: " + text);
-  return micros;
-}
 
 bool CarmenReader::Next(Record* out) {
   std::string& text = line_;  // reused: no allocation per line once it has grown
@@ -192,7 +161,7 @@ bool CarmenReader::Next(Record* out) {
     const std::string_view kind = t.Kind();
     if (kind == "FLASER" || kind == "ROBOTLASER1") {
       out->kind = Record::Kind::kLaser;
-      // Field by field, so that ranges_m and stamp_text keep their capacity from record to record.
+      // Field by field, so that ranges_m keeps its capacity from record to record.
       LaserRecord& laser = out->laser;
       laser.line = line;
       laser.max_range_m = 0.0f;
@@ -213,7 +182,7 @@ bool CarmenReader::Next(Record* out) {
       out->odom.line = line;
       out->odom.pose = ReadPose(t, "odometry pose");
       for (const char* what : {"tv", "rv", "accel"}) t.Number(what);
-      out->odom.stamp_us = t.Stamp("ipc_timestamp", &odom_stamp_text_);
+      out->odom.stamp_us = t.Stamp("ipc_timestamp");
       ++counters_.odom_records;
       return true;
     }

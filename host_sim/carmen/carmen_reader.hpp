@@ -27,7 +27,6 @@ class CarmenError : public std::runtime_error {
 struct LaserRecord {
   long line = 0;
   std::int64_t stamp_us = 0;       // ipc_timestamp, to the microsecond (relations use it)
-  std::string stamp_text;          // as written in the file, for exact TUM output
   float angle_min_rad = 0.0f;
   float angle_increment_rad = 0.0f;
   float max_range_m = 0.0f;        // 0 when the line does not say
@@ -76,15 +75,9 @@ class CarmenReader {
   // Reused from line to line (parsing allocates nothing once they have grown).
   std::string line_;
   std::vector<std::string_view> tokens_;
-  std::string odom_stamp_text_;
 };
 
 // A whole word as a finite decimal number: the double strtod gives; false on anything else.
 bool ParseNumber(std::string_view text, double* value);
-
-// "976052857.337530" -> 976052857337530; throws std::invalid_argument on anything else.
-std::int64_t ParseStampMicros(const std::string& text);
-// The same without exceptions: false on anything but digits[.digits] (at most 9 decimals).
-bool ParseStampMicros(std::string_view text, std::int64_t* micros);
 
 }  // namespace dpcr::carmen

@@ -4,8 +4,9 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <string_view>
 
-#include "host_sim/drivers/time_text.hpp"
+#include "host_sim/eval/stamp_text.hpp"
 
 namespace dpcr {
 namespace {
@@ -32,7 +33,7 @@ bool ParseCandumpLine(const std::string& line, CandumpRecord* out) {
   if (line.size() < 4 || line[0] != '(') return false;
   const std::size_t close = line.find(')');
   if (close == std::string::npos || close + 1 >= line.size() || line[close + 1] != ' ') return false;
-  if (!ParseSecUsec(line.substr(1, close - 1), &out->stamp_us)) return false;
+  if (!eval::ParseExactStamp(std::string_view(line).substr(1, close - 1), &out->stamp_us)) return false;
   const std::size_t space = line.find(' ', close + 2);
   if (space == std::string::npos) return false;
   out->interface = line.substr(close + 2, space - close - 2);
@@ -87,7 +88,7 @@ std::string FormatCandumpLine(const CandumpRecord& record) {
   } else {
     std::snprintf(id, sizeof(id), "%03X", f.id & kCanSffMask);
   }
-  std::string line = "(" + FormatSecUsec(record.stamp_us) + ") " + record.interface + " " + id + "#";
+  std::string line = "(" + eval::FormatStamp(record.stamp_us) + ") " + record.interface + " " + id + "#";
   if ((f.id & kCanRtrFlag) != 0) {
     line += "R";
     return line;
@@ -139,6 +140,10 @@ CanRead CandumpSource::Read() {
   CanRead r;
   if (next_ >= records_.size()) {
     r.status = IoStatus::kEndOfStream;
+    return r;
+  }
+  if (clock_ != nullptr && records_[next_].stamp_us > clock_->NowUs()) {
+    r.status = IoStatus::kWouldBlock;
     return r;
   }
   r.frame = records_[next_].frame;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hal/can_frame.hpp"
@@ -27,15 +28,19 @@ std::string FormatCandumpLine(const CandumpRecord& record);
 bool ReadCandumpLog(const std::string& path, std::vector<CandumpRecord>* out, std::string* error);
 bool WriteCandumpLog(const std::string& path, const std::vector<CandumpRecord>& records, std::string* error);
 
-// A CanSource over loaded records.
+// A CanSource over loaded records. With a clock (a ReplayClock), a record stamped later than
+// its now is not there yet: kWouldBlock.
 class CandumpSource : public CanSource {
  public:
-  explicit CandumpSource(std::vector<CandumpRecord> records) : records_(std::move(records)) {}
+  explicit CandumpSource(std::vector<CandumpRecord> records, const Clock* clock = nullptr)
+      : records_(std::move(records)), clock_(clock) {}
   CanRead Read() override;
+  // Stamp of the next unread record (INT64_MAX at the end).
   std::int64_t next_stamp_us() const;
 
  private:
   std::vector<CandumpRecord> records_;
+  const Clock* clock_;
   std::size_t next_ = 0;
 };
 

@@ -70,11 +70,8 @@ bool DeviceEmitter::Close(std::string* error) {
   return WriteCandumpLog(dir_ + "/wheels.log", can_, error);
 }
 
-DeviceReplay::DeviceReplay(const DeviceFilesConfig& files, const LidarStreamConfig& lidar)
-    : files_(files),
-      lidar_(new LidarStream(lidar)),
-      odo_(files.wheels),
-      scan_(new DeviceScan()) {}
+DeviceReplay::DeviceReplay(const DeviceFilesConfig& files, const LidarStreamConfig& lidar, DeviceSink* sink)
+    : pipeline_(new DevicePipeline(DevicePipelineConfig{lidar, files.wheels}, sink)) {}
 
 bool DeviceReplay::Open(const std::string& uart_path, const std::string& candump_path, std::string* error) {
   std::vector<UartChunk> chunks;
@@ -86,49 +83,25 @@ bool DeviceReplay::Open(const std::string& uart_path, const std::string& candump
   return true;
 }
 
-DeviceReplay::Event DeviceReplay::Next() {
+void DeviceReplay::Run() {
+  std::vector<std::uint8_t> pending(4096);
+  ByteRead chunk;  // the UART bytes read and not yet fed: pending[fed .. chunk.size)
+  std::size_t fed = 0;
   for (;;) {
-    const std::int64_t uart_t = pending_at_ < pending_.size() ? pending_stamp_ : uart_->next_stamp_us();
+    const std::int64_t uart_t = fed < chunk.size ? chunk.stamp_us : uart_->next_stamp_us();
     const std::int64_t can_t = can_->next_stamp_us();
-    if (can_t == INT64_MAX && uart_t == INT64_MAX) return Event::kEnd;
-    if (can_t <= uart_t) {
+    if (can_t == INT64_MAX && uart_t == INT64_MAX) return;
+    if (can_t <= uart_t) {  // frames first on a tie: the scan then sees the odometry of its instant
       const CanRead r = can_->Read();
-      const CanDecodeResult d = wheels_.Feed(r.frame);
-      if (d == CanDecodeResult::kGyro) {
-        last_gyro_ = wheels_.gyro();
-        have_gyro_ = true;
-      }
-      if (d != CanDecodeResult::kTicks) continue;
-      const std::int64_t stamp = wheel_time_.ToHostUs(wheels_.ticks().device_time_us, r.stamp_us);
-      odometry_ = odo_.Update(wheels_.ticks(), stamp);
-      odometry_.has_gyro = have_gyro_;
-      odometry_.gyro_yaw_rate = last_gyro_.yaw_rate_rad_s;
-      ++odometry_count_;
-      return Event::kOdometry;
+      pipeline_->FeedCan(r.frame, r.stamp_us);
+      continue;
     }
-    if (pending_at_ >= pending_.size()) {
-      pending_.resize(4096);
-      const ByteRead r = uart_->Read(pending_.data(), pending_.size());
-      pending_.resize(r.size);
-      pending_at_ = 0;
-      pending_stamp_ = r.stamp_us;
+    if (fed >= chunk.size) {
+      chunk = uart_->Read(pending.data(), pending.size());
+      fed = 0;
     }
-    pending_at_ += lidar_->Feed(pending_.data() + pending_at_, pending_.size() - pending_at_, pending_stamp_);
-    if (lidar_->revolution_ready()) {
-      lidar_->TakeScan(scan_.get());
-      ++scans_;
-      return Event::kScan;
-    }
+    fed += pipeline_->FeedLidar(pending.data() + fed, chunk.size - fed, chunk.stamp_us);
   }
-}
-
-DeviceReplayCounters DeviceReplay::counters() const {
-  DeviceReplayCounters c;
-  c.lidar = lidar_->counters();
-  c.can = wheels_.counters();
-  c.scans = scans_;
-  c.odometry = odometry_count_;
-  return c;
 }
 
 }  // namespace dpcr

@@ -1,5 +1,5 @@
 // The device path on the host: write a run as device files (LD06 UART capture + candump log of
-// the wheel protocol), and replay such files through the same decoders as the firmware.
+// the wheel protocol), and replay such files through the firmware's DevicePipeline.
 #pragma once
 
 #include <cstdint>
@@ -7,18 +7,14 @@
 #include <string>
 #include <vector>
 
-#include "core/capacity.hpp"
 #include "core/front_end/odometry.hpp"
-#include "core/geometry/scan.hpp"
+#include "hal/device_pipeline.hpp"
 #include "hal/diff_drive_odometry.hpp"
 #include "hal/lidar_stream.hpp"
-#include "hal/wheel_can_protocol.hpp"
 #include "host_sim/drivers/candump_log.hpp"
 #include "host_sim/drivers/uart_capture.hpp"
 
 namespace dpcr {
-
-using DeviceScan = Scan<VacuumProfile::kMaxBeams>;
 
 struct DeviceFilesConfig {
   // Device 0 deg = scan angle 0, sweeping counter-clockwise: matches dpcr-sim, whose
@@ -53,45 +49,21 @@ class DeviceEmitter {
   std::uint8_t gyro_seq_ = 0;
 };
 
-struct DeviceReplayCounters {
-  LidarStreamCounters lidar;
-  WheelCanCounters can;
-  std::uint32_t scans = 0;
-  std::uint32_t odometry = 0;
-};
-
-// Replays a UART capture + candump log in time order through LidarStream, WheelCanDecoder and
-// DiffDriveOdometry. Next() yields odometry samples and scans; a scan comes after every
-// odometry sample recorded up to the time its revolution closed.
+// Replays a UART capture + candump log in time order through a DevicePipeline into `sink`: a
+// scan comes after every odometry sample recorded up to the time its revolution closed.
 class DeviceReplay {
  public:
-  enum class Event { kOdometry, kScan, kEnd };
-
-  DeviceReplay(const DeviceFilesConfig& files, const LidarStreamConfig& lidar);
+  DeviceReplay(const DeviceFilesConfig& files, const LidarStreamConfig& lidar, DeviceSink* sink);
   // Either path may be empty (that stream is absent).
   bool Open(const std::string& uart_path, const std::string& candump_path, std::string* error);
-  Event Next();
-  const OdometrySample& odometry() const { return odometry_; }
-  const DeviceScan& scan() const { return *scan_; }
-  DeviceReplayCounters counters() const;
+  // Replays both files to their end.
+  void Run();
+  DevicePipelineCounters counters() const { return pipeline_->counters(); }
 
  private:
-  DeviceFilesConfig files_;
-  std::unique_ptr<LidarStream> lidar_;
+  std::unique_ptr<DevicePipeline> pipeline_;
   std::unique_ptr<UartCaptureSource> uart_;
   std::unique_ptr<CandumpSource> can_;
-  WheelCanDecoder wheels_;
-  DiffDriveOdometry odo_;
-  DeviceTimeBase wheel_time_;
-  GyroRate last_gyro_;
-  bool have_gyro_ = false;
-  std::vector<std::uint8_t> pending_;
-  std::size_t pending_at_ = 0;
-  std::int64_t pending_stamp_ = 0;
-  OdometrySample odometry_;
-  std::unique_ptr<DeviceScan> scan_;
-  std::uint32_t scans_ = 0;
-  std::uint32_t odometry_count_ = 0;
 };
 
 }  // namespace dpcr

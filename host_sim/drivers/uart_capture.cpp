@@ -1,11 +1,11 @@
 #include "host_sim/drivers/uart_capture.hpp"
 
-#include "host_sim/drivers/time_text.hpp"
-
-#include <cinttypes>
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <string_view>
+
+#include "host_sim/eval/stamp_text.hpp"
 
 namespace dpcr {
 namespace {
@@ -22,34 +22,10 @@ int HexValue(char c) {
 
 }  // namespace
 
-// Shared with the candump parser: "sec.usec" with exactly 6 decimals -> microseconds.
-bool ParseSecUsec(const std::string& s, std::int64_t* out) {
-  const std::size_t dot = s.find('.');
-  if (dot == std::string::npos || dot == 0 || s.size() - dot - 1 != 6) return false;
-  std::int64_t sec = 0;
-  for (std::size_t i = 0; i < dot; ++i) {
-    if (s[i] < '0' || s[i] > '9' || sec > std::numeric_limits<std::int64_t>::max() / 100) return false;
-    sec = sec * 10 + (s[i] - '0');
-  }
-  std::int64_t usec = 0;
-  for (std::size_t i = dot + 1; i < s.size(); ++i) {
-    if (s[i] < '0' || s[i] > '9') return false;
-    usec = usec * 10 + (s[i] - '0');
-  }
-  *out = sec * 1000000 + usec;
-  return true;
-}
-
-std::string FormatSecUsec(std::int64_t stamp_us) {
-  char buf[48];
-  std::snprintf(buf, sizeof(buf), "%" PRId64 ".%06" PRId64, stamp_us / 1000000, stamp_us % 1000000);
-  return buf;
-}
-
 bool ParseUartCaptureLine(const std::string& line, UartChunk* out) {
   const std::size_t space = line.find(' ');
   if (space == std::string::npos) return false;
-  if (!ParseSecUsec(line.substr(0, space), &out->stamp_us)) return false;
+  if (!eval::ParseExactStamp(std::string_view(line).substr(0, space), &out->stamp_us)) return false;
   const std::size_t hex_len = line.size() - space - 1;
   if (hex_len == 0 || hex_len % 2 != 0 || hex_len / 2 > kMaxChunk) return false;
   out->bytes.resize(hex_len / 2);
@@ -64,7 +40,7 @@ bool ParseUartCaptureLine(const std::string& line, UartChunk* out) {
 
 std::string FormatUartCaptureLine(std::int64_t stamp_us, const std::uint8_t* data, std::size_t size) {
   static const char kHex[] = "0123456789ABCDEF";
-  std::string line = FormatSecUsec(stamp_us);
+  std::string line = eval::FormatStamp(stamp_us);
   line.push_back(' ');
   for (std::size_t i = 0; i < size; ++i) {
     line.push_back(kHex[data[i] >> 4]);
@@ -137,6 +113,10 @@ ByteRead UartCaptureSource::Read(std::uint8_t* buffer, std::size_t capacity) {
   ByteRead r;
   if (chunk_ >= chunks_.size()) {
     r.status = IoStatus::kEndOfStream;
+    return r;
+  }
+  if (clock_ != nullptr && chunks_[chunk_].stamp_us > clock_->NowUs()) {
+    r.status = IoStatus::kWouldBlock;
     return r;
   }
   const UartChunk& c = chunks_[chunk_];

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hal/ports.hpp"
@@ -39,16 +40,19 @@ class UartCaptureWriter {
   std::FILE* file_ = nullptr;
 };
 
-// A ByteSource over loaded chunks: each Read returns (part of) one chunk with its stamp.
+// A ByteSource over loaded chunks: each Read returns (part of) one chunk with its stamp. With a
+// clock (a ReplayClock), a chunk stamped later than its now is not there yet: kWouldBlock.
 class UartCaptureSource : public ByteSource {
  public:
-  explicit UartCaptureSource(std::vector<UartChunk> chunks) : chunks_(std::move(chunks)) {}
+  explicit UartCaptureSource(std::vector<UartChunk> chunks, const Clock* clock = nullptr)
+      : chunks_(std::move(chunks)), clock_(clock) {}
   ByteRead Read(std::uint8_t* buffer, std::size_t capacity) override;
   // Stamp of the next unread chunk (INT64_MAX at the end).
   std::int64_t next_stamp_us() const;
 
  private:
   std::vector<UartChunk> chunks_;
+  const Clock* clock_;
   std::size_t chunk_ = 0;
   std::size_t offset_ = 0;
 };

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/grid/tiled_grid.hpp"
-#include "tools/eval/trajectory.hpp"
+#include "host_sim/eval/trajectory.hpp"
 
 namespace dpcr::output {
 

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "host_sim/output/map_files.hpp"
-#include "tools/eval/accuracy.hpp"
-#include "tools/eval/trajectory.hpp"
+#include "host_sim/eval/accuracy.hpp"
+#include "host_sim/eval/trajectory.hpp"
 
 namespace dpcr::output {
 
@@ -113,12 +113,6 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                     {"submap_line_builds", f.submap_line_builds}, {"region_line_builds", f.region_line_builds},
                     {"reference_cells_dropped", f.reference_cells_dropped}};
   return j;
-}
-
-// Renders, then writes all outputs of a finished run.
-template <class MapperType>
-nlohmann::json FinishRun(const std::string& dir, const MapperType& mapper, const RunRecord& run) {
-  return WriteRunOutputs(dir, RenderFused(mapper), run, MapperMetrics(mapper));
 }
 
 }  // namespace dpcr::output

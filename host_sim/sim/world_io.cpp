@@ -56,6 +56,111 @@ bool EndsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+// PGM header tokens: whitespace and '#' comments skipped.
+class PgmTokens {
+ public:
+  PgmTokens(const std::string& bytes, const std::string& source) : bytes_(bytes), source_(source) {}
+  std::string Next() {
+    for (;;) {
+      while (pos_ < bytes_.size() && std::isspace(static_cast<unsigned char>(bytes_[pos_]))) ++pos_;
+      if (pos_ < bytes_.size() && bytes_[pos_] == '#') {
+        while (pos_ < bytes_.size() && bytes_[pos_] != '\n') ++pos_;
+        continue;
+      }
+      break;
+    }
+    const std::size_t start = pos_;
+    while (pos_ < bytes_.size() && !std::isspace(static_cast<unsigned char>(bytes_[pos_]))) ++pos_;
+    return bytes_.substr(start, pos_ - start);
+  }
+  int HeaderInt(const char* what) {
+    const std::string tok = Next();
+    char* end = nullptr;
+    const long v = std::strtol(tok.c_str(), &end, 10);
+    if (tok.empty() || *end != '\0' || v <= 0 || v > 100000) {
+      throw WorldError(source_ + ": bad PGM " + what + " '" + tok + "'");
+    }
+    return static_cast<int>(v);
+  }
+  // Offset of the raster of a binary (P5) image: after the single whitespace that ends the header.
+  std::size_t RasterStart() const { return pos_ + 1; }
+
+ private:
+  const std::string& bytes_;
+  const std::string& source_;
+  std::size_t pos_ = 0;
+};
+
+// A floor-plan image reduced to what it says: which pixels are walls (darker than half the max).
+struct DarkPixels {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> dark;  // row-major, row 0 at the top of the image
+  bool At(int x, int row) const {
+    if (x < 0 || x >= width || row < 0 || row >= height) return false;
+    return dark[static_cast<std::size_t>(row) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] != 0;
+  }
+};
+
+// P5 (8 or 16 bits) or P2; WorldError naming `source` on a bad header or truncated pixels.
+DarkPixels ReadDarkPixels(const std::string& bytes, const std::string& source) {
+  PgmTokens tokens(bytes, source);
+  const std::string magic = tokens.Next();
+  if (magic != "P5" && magic != "P2") throw WorldError(source + ": not a PGM file (magic '" + magic + "')");
+  DarkPixels image;
+  image.width = tokens.HeaderInt("width");
+  image.height = tokens.HeaderInt("height");
+  const int maxval = tokens.HeaderInt("maxval");
+  if (maxval > 65535) throw WorldError(source + ": bad PGM maxval");
+  image.dark.resize(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
+  if (magic == "P5") {
+    const std::size_t start = tokens.RasterStart();
+    const std::size_t bpp = maxval > 255 ? 2 : 1;
+    if (bytes.size() < start + image.dark.size() * bpp) throw WorldError(source + ": PGM pixel data truncated");
+    for (std::size_t i = 0; i < image.dark.size(); ++i) {
+      const auto* p = reinterpret_cast<const unsigned char*>(bytes.data() + start + i * bpp);
+      const int v = bpp == 2 ? (p[0] << 8 | p[1]) : p[0];
+      image.dark[i] = 2 * v < maxval ? 1 : 0;
+    }
+  } else {
+    for (std::size_t i = 0; i < image.dark.size(); ++i) {
+      const std::string tok = tokens.Next();
+      if (tok.empty()) throw WorldError(source + ": PGM pixel data truncated");
+      image.dark[i] = 2 * std::atoi(tok.c_str()) < maxval ? 1 : 0;
+    }
+  }
+  return image;
+}
+
+// Walls along the boundary edges between dark and light pixels, merged into maximal runs.
+void AddBoundaryWalls(const DarkPixels& image, double resolution_m, Vec2 origin, World* world) {
+  const int w = image.width, h = image.height;
+  // World coordinates of pixel corner (x, row): row 0 is the top of the image (largest y).
+  auto corner = [&](int x, int row) { return Vec2{origin.x + x * resolution_m, origin.y + (h - row) * resolution_m}; };
+  for (int row = 0; row <= h; ++row) {  // horizontal edges on the line above pixel row `row`
+    int run = -1;
+    for (int x = 0; x <= w; ++x) {
+      const bool edge = x < w && image.At(x, row) != image.At(x, row - 1);
+      if (edge && run < 0) run = x;
+      if (!edge && run >= 0) {
+        world->segments.push_back(Segment{corner(run, row), corner(x, row), 0});
+        run = -1;
+      }
+    }
+  }
+  for (int x = 0; x <= w; ++x) {  // vertical edges left of pixel column x
+    int run = -1;
+    for (int row = 0; row <= h; ++row) {
+      const bool edge = row < h && image.At(x, row) != image.At(x - 1, row);
+      if (edge && run < 0) run = row;
+      if (!edge && run >= 0) {
+        world->segments.push_back(Segment{corner(x, run), corner(x, row), 0});
+        run = -1;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 World ParseWorldText(const std::string& text, const std::string& source_name) {
@@ -136,86 +241,13 @@ World ParseWorldText(const std::string& text, const std::string& source_name) {
 World ParsePgmWorld(const std::string& bytes, const std::string& source_name, double resolution_m,
                     Vec2 origin) {
   if (!(resolution_m > 0.0)) throw WorldError(source_name + ": PGM resolution must be positive");
-  std::size_t pos = 0;
-  // Header tokens, skipping whitespace and '#' comments.
-  auto next_token = [&]() {
-    for (;;) {
-      while (pos < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
-      if (pos < bytes.size() && bytes[pos] == '#') {
-        while (pos < bytes.size() && bytes[pos] != '\n') ++pos;
-        continue;
-      }
-      break;
-    }
-    const std::size_t start = pos;
-    while (pos < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
-    return bytes.substr(start, pos - start);
-  };
-  auto header_int = [&](const char* what) {
-    const std::string tok = next_token();
-    char* end = nullptr;
-    const long v = std::strtol(tok.c_str(), &end, 10);
-    if (tok.empty() || *end != '\0' || v <= 0 || v > 100000) {
-      throw WorldError(source_name + ": bad PGM " + what + " '" + tok + "'");
-    }
-    return static_cast<int>(v);
-  };
-  const std::string magic = next_token();
-  if (magic != "P5" && magic != "P2") throw WorldError(source_name + ": not a PGM file (magic '" + magic + "')");
-  const int w = header_int("width");
-  const int h = header_int("height");
-  const int maxval = header_int("maxval");
-  if (maxval > 65535) throw WorldError(source_name + ": bad PGM maxval");
-  std::vector<std::uint8_t> dark(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-  if (magic == "P5") {
-    ++pos;  // the single whitespace after maxval
-    const std::size_t bpp = maxval > 255 ? 2 : 1;
-    if (bytes.size() < pos + dark.size() * bpp) throw WorldError(source_name + ": PGM pixel data truncated");
-    for (std::size_t i = 0; i < dark.size(); ++i) {
-      const auto* p = reinterpret_cast<const unsigned char*>(bytes.data() + pos + i * bpp);
-      const int v = bpp == 2 ? (p[0] << 8 | p[1]) : p[0];
-      dark[i] = 2 * v < maxval ? 1 : 0;
-    }
-  } else {
-    for (std::size_t i = 0; i < dark.size(); ++i) {
-      const std::string tok = next_token();
-      if (tok.empty()) throw WorldError(source_name + ": PGM pixel data truncated");
-      dark[i] = 2 * std::atoi(tok.c_str()) < maxval ? 1 : 0;
-    }
-  }
-  auto is_dark = [&](int x, int row) {
-    if (x < 0 || x >= w || row < 0 || row >= h) return false;
-    return dark[static_cast<std::size_t>(row) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] != 0;
-  };
-  // World coordinates of pixel corner (x, row): row 0 is the top of the image (largest y).
-  auto corner = [&](int x, int row) { return Vec2{origin.x + x * resolution_m, origin.y + (h - row) * resolution_m}; };
+  const DarkPixels image = ReadDarkPixels(bytes, source_name);
   World world;
   world.name = source_name;
-  // Boundary edges between dark and light pixels, merged into maximal runs.
-  for (int row = 0; row <= h; ++row) {  // horizontal edges on the line above pixel row `row`
-    int run = -1;
-    for (int x = 0; x <= w; ++x) {
-      const bool edge = x < w && is_dark(x, row) != is_dark(x, row - 1);
-      if (edge && run < 0) run = x;
-      if (!edge && run >= 0) {
-        world.segments.push_back(Segment{corner(run, row), corner(x, row), 0});
-        run = -1;
-      }
-    }
-  }
-  for (int x = 0; x <= w; ++x) {  // vertical edges left of pixel column x
-    int run = -1;
-    for (int row = 0; row <= h; ++row) {
-      const bool edge = row < h && is_dark(x, row) != is_dark(x - 1, row);
-      if (edge && run < 0) run = row;
-      if (!edge && run >= 0) {
-        world.segments.push_back(Segment{corner(x, run), corner(x, row), 0});
-        run = -1;
-      }
-    }
-  }
+  AddBoundaryWalls(image, resolution_m, origin, &world);
   if (world.segments.empty()) throw WorldError(source_name + ": PGM has no dark (wall) pixels");
-  world.rooms.push_back(Room{"all", origin.x, origin.y, origin.x + w * resolution_m, origin.y + h * resolution_m});
+  world.rooms.push_back(Room{"all", origin.x, origin.y, origin.x + image.width * resolution_m,
+                             origin.y + image.height * resolution_m});
   return world;
 }
 

@@ -7,18 +7,11 @@
 #include <sstream>
 
 #include "host_sim/carmen/carmen_reader.hpp"
+#include "host_sim/carmen/laser_scan.hpp"
 
 using dpcr::carmen::CarmenError;
 using dpcr::carmen::CarmenReader;
 using dpcr::carmen::Record;
-
-TEST_CASE("Timestamps parse to exact microseconds") {
-  REQUIRE(dpcr::carmen::ParseStampMicros("976052857.337530") == 976052857337530LL);
-  REQUIRE(dpcr::carmen::ParseStampMicros("12") == 12000000LL);
-  REQUIRE(dpcr::carmen::ParseStampMicros("1.0000005") == 1000001LL);
-  REQUIRE_THROWS(dpcr::carmen::ParseStampMicros("1e9"));
-  REQUIRE_THROWS(dpcr::carmen::ParseStampMicros("-1.5"));
-}
 
 TEST_CASE("FLASER, ODOM, PARAM and comment lines are read in file order") {
   std::istringstream log(
@@ -37,9 +30,9 @@ TEST_CASE("FLASER, ODOM, PARAM and comment lines are read in file order") {
   REQUIRE(reader.Next(&r));
   REQUIRE(r.kind == Record::Kind::kLaser);
   REQUIRE(r.laser.line == 4);
+  REQUIRE(r.laser.stamp_us == 100500000LL);
   REQUIRE(r.laser.ranges_m.size() == 4);
   REQUIRE(r.laser.ranges_m[3] == 4.0f);
-  REQUIRE(r.laser.stamp_text == "100.500000");
   REQUIRE(r.laser.odom_pose.x == Approx(1.1f));
   REQUIRE(r.laser.angle_min_rad == Approx(-dpcr::kPi / 2));
   REQUIRE(r.laser.angle_increment_rad == Approx(dpcr::kPi / 4));  // 4 beams: 45 deg steps
@@ -122,4 +115,25 @@ TEST_CASE("Numbers parse to the double strtod gives (the short-decimal fast path
     const double expected = std::strtod(text, nullptr);
     REQUIRE(std::memcmp(&v, &expected, sizeof v) == 0);
   }
+}
+
+TEST_CASE("Laser records become scans; more beams than a scan holds are decimated, not truncated") {
+  dpcr::carmen::LaserRecord laser;
+  laser.stamp_us = 42;
+  laser.angle_min_rad = -1.0f;
+  laser.angle_increment_rad = 0.01f;
+  for (int i = 0; i < 10; ++i) laser.ranges_m.push_back(1.0f + 0.1f * static_cast<float>(i));
+  dpcr::Scan<16> roomy;
+  CHECK_FALSE(dpcr::carmen::ToScan(laser, &roomy));
+  REQUIRE(roomy.beams.size() == 10);
+  CHECK(roomy.stamp_us == 42);
+  CHECK(roomy.beams[9].angle_rad == Approx(-0.91f));
+  CHECK(roomy.beams[9].range_m == Approx(1.9f));
+  dpcr::Scan<4> small;
+  CHECK(dpcr::carmen::ToScan(laser, &small));
+  REQUIRE(small.beams.size() == 4);  // every third beam: 0, 3, 6, 9
+  CHECK(small.beams[1].range_m == Approx(1.3f));
+  CHECK(small.beams[3].angle_rad == Approx(-0.91f));
+  CHECK(dpcr::carmen::ToScan(laser, &small));  // a scan reused: overwritten, not appended
+  CHECK(small.beams.size() == 4);
 }

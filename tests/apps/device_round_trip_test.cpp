@@ -32,6 +32,37 @@ struct RoundTrip {
   double max_diff_rad = 0.0;
 };
 
+// Maps the replayed device files and compares each pose with the direct run's at the same scan.
+class ComparingSink : public dpcr::DeviceSink {
+ public:
+  ComparingSink(MapperType* device, const std::map<std::int64_t, dpcr::Pose2>* direct_poses, RoundTrip* result)
+      : device_(device), direct_poses_(direct_poses), r_(result) {}
+  void AddOdometry(const dpcr::OdometrySample& sample) override { device_->AddOdometry(sample); }
+  void AddScan(const dpcr::DeviceScan& scan) override {
+    (void)device_->AddScan(scan);
+    // Stamps are reproduced to a few microseconds: match the nearest direct scan.
+    auto it = direct_poses_->lower_bound(scan.stamp_us - 1000);
+    if (it == direct_poses_->end() || std::llabs(it->first - scan.stamp_us) > 1000) return;
+    // Each mapper's frame is its own first pose: compare motion since the first matched scan.
+    if (r_->matched++ == 0) {
+      first_direct_ = it->second;
+      first_device_ = device_->pose();
+      return;
+    }
+    const dpcr::Pose2 a = dpcr::Between(first_direct_, it->second);
+    const dpcr::Pose2 b = dpcr::Between(first_device_, device_->pose());
+    r_->max_diff_m = std::max(r_->max_diff_m, static_cast<double>(std::hypot(a.x - b.x, a.y - b.y)));
+    r_->max_diff_rad =
+        std::max(r_->max_diff_rad, static_cast<double>(std::fabs(dpcr::NormalizeAngle(a.theta - b.theta))));
+  }
+
+ private:
+  MapperType* device_;
+  const std::map<std::int64_t, dpcr::Pose2>* direct_poses_;
+  RoundTrip* r_;
+  dpcr::Pose2 first_direct_, first_device_;
+};
+
 RoundTrip MapBothWays(bool registration) {
   const dpcr::test::ScopedTempDir temp(registration ? "round_trip_front_end" : "round_trip_odometry");
   const auto& dir = temp.path();
@@ -66,38 +97,13 @@ RoundTrip MapBothWays(bool registration) {
   dpcr::DeviceFilesConfig files;
   dpcr::LidarStreamConfig lidar;
   lidar.assembler.angle_map = files.angle_map;
-  dpcr::DeviceReplay replay(files, lidar);
-  REQUIRE(replay.Open((dir / "lidar.uart").string(), (dir / "wheels.log").string(), &error));
   auto device = NewMapper(registration);
   RoundTrip r;
   r.scans = direct_poses.size();
-  std::size_t& matched = r.matched;
-  double& max_diff_m = r.max_diff_m;
-  double& max_diff_rad = r.max_diff_rad;
-  dpcr::Pose2 first_direct, first_device;
-  for (auto ev = replay.Next(); ev != dpcr::DeviceReplay::Event::kEnd; ev = replay.Next()) {
-    if (ev == dpcr::DeviceReplay::Event::kOdometry) {
-      device->AddOdometry(replay.odometry());
-      continue;
-    }
-    scan.stamp_us = replay.scan().stamp_us;
-    scan.beams.clear();
-    for (const auto& b : replay.scan().beams) (void)scan.beams.push_back(b);
-    (void)device->AddScan(scan);
-    // Stamps are reproduced to a few microseconds: match the nearest direct scan.
-    auto it = direct_poses.lower_bound(scan.stamp_us - 1000);
-    if (it == direct_poses.end() || std::llabs(it->first - scan.stamp_us) > 1000) continue;
-    // Each mapper's frame is its own first pose: compare motion since the first matched scan.
-    if (matched++ == 0) {
-      first_direct = it->second;
-      first_device = device->pose();
-      continue;
-    }
-    const dpcr::Pose2 a = dpcr::Between(first_direct, it->second);
-    const dpcr::Pose2 b = dpcr::Between(first_device, device->pose());
-    max_diff_m = std::max(max_diff_m, static_cast<double>(std::hypot(a.x - b.x, a.y - b.y)));
-    max_diff_rad = std::max(max_diff_rad, static_cast<double>(std::fabs(dpcr::NormalizeAngle(a.theta - b.theta))));
-  }
+  ComparingSink sink(device.get(), &direct_poses, &r);
+  dpcr::DeviceReplay replay(files, lidar, &sink);
+  REQUIRE(replay.Open((dir / "lidar.uart").string(), (dir / "wheels.log").string(), &error));
+  replay.Run();
   return r;
 }
 

@@ -9,7 +9,7 @@
 #include "core/mapper.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
-#include "tools/eval/accuracy.hpp"
+#include "host_sim/eval/accuracy.hpp"
 
 namespace {
 using MapperType = dpcr::Mapper<dpcr::VacuumProfile>;

@@ -10,6 +10,7 @@
 #include "core/capacity.hpp"
 #include "core/mapper.hpp"
 #include "host_sim/carmen/carmen_reader.hpp"
+#include "host_sim/carmen/laser_scan.hpp"
 #include "tests/budget/synthetic_run.hpp"
 #include "tools/public_logs.hpp"
 
@@ -53,14 +54,7 @@ int RunIntel(const std::string& clf) {
     s.stamp_us = rec.laser.stamp_us;
     s.pose = rec.laser.odom_pose;
     mapper.AddOdometry(s);
-    scan.stamp_us = rec.laser.stamp_us;
-    scan.beams.clear();
-    for (std::size_t i = 0; i < rec.laser.ranges_m.size(); ++i) {
-      dpcr::Beam b;
-      b.angle_rad = rec.laser.angle_min_rad + static_cast<float>(i) * rec.laser.angle_increment_rad;
-      b.range_m = rec.laser.ranges_m[i];
-      (void)scan.beams.push_back(b);
-    }
+    (void)dpcr::carmen::ToScan(rec.laser, &scan);
     (void)mapper.AddScan(scan);
     ++scans;
   }

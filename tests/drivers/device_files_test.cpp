@@ -46,6 +46,32 @@ Run MakeRun() {
   return run;
 }
 
+// Keeps the replay's odometry; checks each scan against the emitted one as it arrives.
+class CheckingSink : public dpcr::DeviceSink {
+ public:
+  explicit CheckingSink(const Run* run) : run_(run) {}
+  void AddOdometry(const dpcr::OdometrySample& sample) override { odometry.push_back(sample); }
+  void AddScan(const dpcr::DeviceScan& out) override {
+    // Matches the emitted scan, and comes after the odometry up to its end.
+    REQUIRE(scans < run_->scans.size());
+    const dpcr::DeviceScan& in = *run_->scans[scans];
+    CHECK(out.stamp_us == Approx(in.stamp_us).margin(3));
+    REQUIRE(out.beams.size() == in.beams.size());
+    for (std::size_t i = 0; i < in.beams.size(); ++i) {
+      REQUIRE(std::fabs(out.beams[i].range_m - in.beams[i].range_m) < 0.0006f);
+    }
+    REQUIRE_FALSE(odometry.empty());
+    CHECK(odometry.back().stamp_us >= out.stamp_us + out.beams.back().offset_us - 10000);
+    ++scans;
+  }
+
+  std::vector<dpcr::OdometrySample> odometry;
+  std::size_t scans = 0;
+
+ private:
+  const Run* run_;
+};
+
 }  // namespace
 
 TEST_CASE("emit device files then replay gives the same scans and trajectory") {
@@ -63,33 +89,13 @@ TEST_CASE("emit device files then replay gives the same scans and trajectory") {
   }
   dpcr::LidarStreamConfig lidar;
   lidar.assembler.angle_map = files.angle_map;
-  dpcr::DeviceReplay replay(files, lidar);
+  CheckingSink sink(&run);
+  dpcr::DeviceReplay replay(files, lidar, &sink);
   std::string error;
   REQUIRE(replay.Open(dir + "/lidar.uart", dir + "/wheels.log", &error));
-  std::vector<dpcr::OdometrySample> odo;
-  std::size_t scans = 0;
-  std::int64_t last_odo_stamp = 0;
-  for (;;) {
-    const dpcr::DeviceReplay::Event e = replay.Next();
-    if (e == dpcr::DeviceReplay::Event::kEnd) break;
-    if (e == dpcr::DeviceReplay::Event::kOdometry) {
-      odo.push_back(replay.odometry());
-      last_odo_stamp = replay.odometry().stamp_us;
-      continue;
-    }
-    // A scan: matches the emitted one, and comes after the odometry up to its end.
-    REQUIRE(scans < run.scans.size());
-    const dpcr::DeviceScan& in = *run.scans[scans];
-    const dpcr::DeviceScan& out = replay.scan();
-    CHECK(out.stamp_us == Approx(in.stamp_us).margin(3));
-    REQUIRE(out.beams.size() == in.beams.size());
-    for (std::size_t i = 0; i < in.beams.size(); ++i) {
-      REQUIRE(std::fabs(out.beams[i].range_m - in.beams[i].range_m) < 0.0006f);
-    }
-    CHECK(last_odo_stamp >= out.stamp_us + out.beams.back().offset_us - 10000);
-    ++scans;
-  }
-  CHECK(scans == run.scans.size() - 1);  // the last revolution never closes
+  replay.Run();
+  const std::vector<dpcr::OdometrySample>& odo = sink.odometry;
+  CHECK(sink.scans == run.scans.size() - 1);  // the last revolution never closes
   REQUIRE(odo.size() == run.odometry.size());
   double max_err = 0.0;
   for (std::size_t i = 0; i < odo.size(); ++i) {
@@ -104,7 +110,7 @@ TEST_CASE("emit device files then replay gives the same scans and trajectory") {
   }
   std::printf("device round trip: max position difference %.6f m over %zu odometry samples\n", max_err, odo.size());
   CHECK(max_err < 1e-3);
-  const dpcr::DeviceReplayCounters c = replay.counters();
+  const dpcr::DevicePipelineCounters c = replay.counters();
   CHECK(c.lidar.bad_packets == 0);
   CHECK(c.can.lost == 0);
   CHECK(c.scans == 29);

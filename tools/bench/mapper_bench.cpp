@@ -12,9 +12,10 @@
 
 #include "core/mapper.hpp"
 #include "host_sim/carmen/carmen_reader.hpp"
+#include "host_sim/carmen/laser_scan.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
-#include "tools/eval/accuracy.hpp"
+#include "host_sim/eval/accuracy.hpp"
 
 namespace dpcr_bench {
 namespace {
@@ -26,14 +27,12 @@ struct Input {
   std::vector<dpcr::OdometrySample> odometry;
   std::vector<std::size_t> odometry_end;
   std::vector<typename MapperType::ScanType> scans;
-  std::vector<std::string> stamps;  // TUM stamps
   dpcr::eval::Trajectory truth;      // simulated runs: the true pose at each scan
 };
 
 // Same feeding as dpcr-replay --carmen (odometry "laser", decimation beyond kMaxBeams).
 template <class MapperType>
 void LoadCarmen(const MapperBenchOptions& o, Input<MapperType>* in) {
-  using Profile = typename MapperType::ProfileType;
   std::ifstream file(o.clf_path);
   if (!file) throw std::runtime_error(o.clf_path + ": cannot open");
   dpcr::carmen::CarmenReader reader(file);
@@ -47,17 +46,8 @@ void LoadCarmen(const MapperBenchOptions& o, Input<MapperType>* in) {
     in->odometry.push_back(s);
     in->odometry_end.push_back(in->odometry.size());
     typename MapperType::ScanType scan;
-    scan.stamp_us = laser.stamp_us;
-    const std::size_t n = laser.ranges_m.size();
-    const std::size_t stride = (n + Profile::kMaxBeams - 1) / Profile::kMaxBeams;
-    for (std::size_t i = 0; i < n; i += stride) {
-      dpcr::Beam b;
-      b.angle_rad = laser.angle_min_rad + static_cast<float>(i) * laser.angle_increment_rad;
-      b.range_m = laser.ranges_m[i];
-      (void)scan.beams.push_back(b);
-    }
+    (void)dpcr::carmen::ToScan(laser, &scan);
     in->scans.push_back(scan);
-    in->stamps.push_back(laser.stamp_text);
     if (o.scans > 0 && static_cast<int>(in->scans.size()) == o.scans) break;
   }
   in->config.lidar.max_range_m = o.max_range_m;
@@ -81,9 +71,6 @@ void LoadSimulation(const MapperBenchOptions& o, Input<MapperType>* in) {
     in->odometry_end.push_back(in->odometry.size());
     in->scans.push_back(event.scan);
     in->truth.push_back({event.scan.stamp_us, event.truth.ToPose2()});
-    char stamp[32];
-    std::snprintf(stamp, sizeof(stamp), "%.6f", static_cast<double>(event.scan.stamp_us) * 1e-6);
-    in->stamps.push_back(stamp);
     if (o.scans > 0 && static_cast<int>(in->scans.size()) == o.scans) break;
   }
   in->config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
@@ -112,8 +99,8 @@ int Run(const MapperBenchOptions& o, Input<MapperType>& input) {
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
   std::vector<double> us;
   us.reserve(input.scans.size());
-  std::vector<dpcr::Pose2> poses;
-  poses.reserve(input.scans.size());
+  dpcr::eval::Trajectory estimate;
+  estimate.reserve(input.scans.size());
   const auto start = std::chrono::steady_clock::now();
   std::size_t next_odometry = 0;
   for (std::size_t i = 0; i < input.scans.size(); ++i) {
@@ -127,16 +114,12 @@ int Run(const MapperBenchOptions& o, Input<MapperType>& input) {
       CALLGRIND_DUMP_STATS;
     }
     us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
-    poses.push_back(mapper.pose());
+    estimate.push_back({input.scans[i].stamp_us, mapper.pose()});
   }
   const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!o.trajectory_path.empty()) {
     std::ofstream tum(o.trajectory_path);
-    for (std::size_t i = 0; i < poses.size(); ++i) {
-      const dpcr::Pose2& p = poses[i];
-      tum << input.stamps[i] << ' ' << p.x << ' ' << p.y << " 0 0 0 " << std::sin(p.theta / 2.0f) << ' '
-          << std::cos(p.theta / 2.0f) << '\n';
-    }
+    dpcr::eval::WriteTum(tum, estimate);
   }
   std::vector<double> sorted = us;
   std::sort(sorted.begin(), sorted.end());
@@ -147,8 +130,6 @@ int Run(const MapperBenchOptions& o, Input<MapperType>& input) {
               c.first_registrations, c.first_rejected, c.second_registrations, c.second_rejected, c.submap_line_builds,
               c.region_line_builds, mapper.region_count());
   if (!input.truth.empty()) {
-    dpcr::eval::Trajectory estimate;
-    for (std::size_t i = 0; i < poses.size(); ++i) estimate.push_back({input.scans[i].stamp_us, poses[i]});
     const dpcr::eval::AccuracyResult a = dpcr::eval::EvaluateAgainstGroundTruth(estimate, input.truth);
     std::printf("LocErr_ave %.3f m  ATE %.3f m  max %.3f m\n", a.loc_err_ave_m, a.ate_rmse_m, a.max_err_m);
   }

@@ -10,15 +10,15 @@
 #include <map>
 #include <memory>
 #include <random>
-#include <sstream>
 #include <vector>
 
 #include "core/registration/classic_plicp.hpp"
 #include "core/registration/plicp.hpp"
 #include "core/grid/ray_caster.hpp"
 #include "core/registration/registration_reference.hpp"
+#include "host_sim/carmen/carmen_reader.hpp"
 #include "tools/bench/figure.hpp"
-#include "tools/bench/sim_worlds.hpp"
+#include "tools/bench/scenes.hpp"
 
 namespace dpcr_bench {
 namespace {
@@ -123,8 +123,8 @@ struct SimCase {
 
 // Scan k of a world's path against the submap of scans k-10 .. k-1 at their true poses.
 // `callgrind_build`: collect instructions around the reference build only (and dump them).
-SimCase MakeSimCase(const World& w, std::size_t k, unsigned seed, bool callgrind_build = false) {
-  SimCase c{w.name, std::make_unique<Reference>(), {}, w.path[k], 0.0, {}};
+SimCase MakeSimCase(const Scene& w, std::size_t k, unsigned seed, bool callgrind_build = false) {
+  SimCase c{w.name(), std::make_unique<Reference>(), {}, w.path[k], 0.0, {}};
   Submap submap(Point2{c.truth.x, c.truth.y});
   for (std::size_t j = k - 10; j < k; ++j) {
     submap.Insert(SimulateScan(w, w.path[j], 450, 0.02f, seed * 1000u + static_cast<unsigned>(j), 8.0f), w.path[j]);
@@ -141,7 +141,7 @@ SimCase MakeSimCase(const World& w, std::size_t k, unsigned seed, bool callgrind
   return c;
 }
 
-std::vector<std::size_t> SimIndices(const World& w, int n) {
+std::vector<std::size_t> SimIndices(const Scene& w, int n) {
   std::vector<std::size_t> out;
   if (n < 2) return {10};
   for (int i = 0; i < n; ++i) out.push_back(10 + (w.path.size() - 11) * static_cast<std::size_t>(i) / static_cast<std::size_t>(n - 1));
@@ -150,7 +150,8 @@ std::vector<std::size_t> SimIndices(const World& w, int n) {
 
 // Figure 1: one hall case from a large perturbation (0.4 m, 15 deg), both results drawn.
 void WriteFigure(const std::string& path, unsigned seed) {
-  const World w = MakeWorlds()[0];
+  const auto scenes = MakeBuiltinScenes();
+  const Scene& w = *scenes[0];  // hall
   const std::size_t k = w.path.size() / 3;
   const Pose2 truth = w.path[k];
   Submap submap(Point2{truth.x, truth.y});
@@ -178,26 +179,24 @@ struct ClfScan {
   Pose2 odom;
 };
 
+// The laser records of a CARMEN log, through host_sim's reader (empty when the file is missing).
 std::vector<ClfScan> ReadClf(const std::string& path) {
   std::vector<ClfScan> scans;
   std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("FLASER ", 0) != 0) continue;
-    std::istringstream ss(line.substr(7));
-    int n = 0;
-    ss >> n;
+  if (!in) return scans;
+  dpcr::carmen::CarmenReader reader(in);
+  dpcr::carmen::Record record;
+  while (reader.Next(&record)) {
+    if (record.kind != dpcr::carmen::Record::Kind::kLaser) continue;
+    const dpcr::carmen::LaserRecord& laser = record.laser;
     ClfScan s;
-    for (int i = 0; i < n; ++i) {
-      float r = 0.0f;
-      ss >> r;
-      const float a = -0.5f * dpcr::kPi + static_cast<float>(i) * kDeg;  // -90 deg, 1 deg steps
+    for (std::size_t i = 0; i < laser.ranges_m.size(); ++i) {
+      const float r = laser.ranges_m[i];
+      const float a = laser.angle_min_rad + static_cast<float>(i) * laser.angle_increment_rad;
       if (r > 0.05f && r < 20.0f) s.points.push_back(Point2{r * std::cos(a), r * std::sin(a)});
     }
-    float x, y, th;
-    ss >> x >> y >> th;
-    s.odom = Pose2{x, y, th};
-    if (ss) scans.push_back(s);
+    s.odom = laser.odom_pose;
+    scans.push_back(std::move(s));
   }
   return scans;
 }
@@ -243,8 +242,13 @@ void PrintTable(const Table& table) {
 // correct across the corridor and the heading, keep the prior's position along it, and flag the
 // match as degenerate.
 void RunCorridor(const RegistrationBenchOptions& o) {
-  World w{"corridor", {{{-30.0f, 0.0f}, {30.0f, 0.0f}}, {{-30.0f, 1.6f}, {30.0f, 1.6f}}}, {}};
-  for (float x = -3.0f; x < 3.0f; x += 0.1f) w.path.push_back(Pose2{x, 0.8f, 0.0f});
+  dpcr::sim::World corridor;
+  corridor.name = "corridor";
+  dpcr::sim::AddWall(&corridor, -30.0, 0.0, 30.0, 0.0);
+  dpcr::sim::AddWall(&corridor, -30.0, 1.6, 30.0, 1.6);
+  std::vector<Pose2> path;
+  for (float x = -3.0f; x < 3.0f; x += 0.1f) path.push_back(Pose2{x, 0.8f, 0.0f});
+  const Scene w(std::move(corridor), std::move(path));
   std::printf("\n| corridor | runs | flagged degenerate | accepted | median slide along (m) | "
               "across + heading corrected (2 cm, 0.5 deg) |\n|---|---|---|---|---|---|\n");
   for (int with_prior = 0; with_prior < 2; ++with_prior) {
@@ -276,24 +280,24 @@ void RunCorridor(const RegistrationBenchOptions& o) {
 int RunCallgrind(const RegistrationBenchOptions& o) {
   const Method m = o.method == "classic" ? Method::kClassic : Method::kImproved;
   std::mt19937 rng(o.seed);
-  const std::vector<World> worlds = MakeWorlds();
+  const std::vector<std::unique_ptr<Scene>> scenes = MakeBuiltinScenes();
   if (o.method == "build") {  // reference builds (lines + table) instead of registrations
     int built = 0;
-    for (const World& w : worlds) {
-      for (std::size_t k : SimIndices(w, o.sim_poses_per_world)) {
+    for (const auto& w : scenes) {
+      for (std::size_t k : SimIndices(*w, o.sim_poses_per_world)) {
         if (built++ == o.callgrind_count) return 0;
-        const SimCase c = MakeSimCase(w, k, o.seed, true);
+        const SimCase c = MakeSimCase(*w, k, o.seed, true);
         std::printf("%d %s cells %d lines %d\n", built, c.world.c_str(), c.stats.obstacle_cells, c.stats.lines);
       }
     }
     return 0;
   }
-  const int total = static_cast<int>(worlds.size()) * o.sim_poses_per_world * o.perturbations;
+  const int total = static_cast<int>(scenes.size()) * o.sim_poses_per_world * o.perturbations;
   const int stride = std::max(1, total / o.callgrind_count);
   int index = 0, done = 0;
-  for (const World& w : worlds) {
-    for (std::size_t k : SimIndices(w, o.sim_poses_per_world)) {
-      const SimCase c = MakeSimCase(w, k, o.seed);
+  for (const auto& w : scenes) {
+    for (std::size_t k : SimIndices(*w, o.sim_poses_per_world)) {
+      const SimCase c = MakeSimCase(*w, k, o.seed);
       for (const Perturbation& p : Perturbations(o.perturbations, &rng)) {
         if (index++ % stride != 0 || done == o.callgrind_count) continue;
         const Pose2 init{c.truth.x + p.dx, c.truth.y + p.dy, dpcr::NormalizeAngle(c.truth.theta + p.dth)};
@@ -318,11 +322,11 @@ int RunRegistrationBench(const RegistrationBenchOptions& o) {
   std::mt19937 rng(o.seed);
   std::size_t points = 0, cases = 0;
   std::vector<double> build_us, cells, lines;
-  for (const World& w : MakeWorlds()) {
-    for (std::size_t k : SimIndices(w, o.sim_poses_per_world)) {
-      const SimCase c = MakeSimCase(w, k, o.seed);
+  for (const auto& w : MakeBuiltinScenes()) {
+    for (std::size_t k : SimIndices(*w, o.sim_poses_per_world)) {
+      const SimCase c = MakeSimCase(*w, k, o.seed);
       const Pose2 truth[2] = {c.truth, c.truth};
-      RunCase("sim " + w.name, *c.ref, c.target, truth, Perturbations(o.perturbations, &rng), &table);
+      RunCase("sim " + w->name(), *c.ref, c.target, truth, Perturbations(o.perturbations, &rng), &table);
       points += c.target.size();
       build_us.push_back(c.build_us);
       cells.push_back(c.stats.obstacle_cells);

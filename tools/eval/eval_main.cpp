@@ -5,7 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "tools/eval/accuracy.hpp"
+#include "host_sim/eval/accuracy.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"dpcr-eval: LocErr_ave / ATE / max error against ground truth, or the relations metric"};

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/eval/trajectory.hpp"
+#include "host_sim/eval/trajectory.hpp"
 
 namespace dpcr::eval {
 

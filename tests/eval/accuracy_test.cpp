@@ -3,10 +3,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <string>
+#include <unistd.h>
 
-#include "tools/eval/accuracy.hpp"
+#include "host_sim/eval/accuracy.hpp"
 
 using dpcr::Pose2;
 using dpcr::eval::StampedPose;
@@ -59,15 +61,23 @@ TEST_CASE("Relations metric compares relative motions") {
   REQUIRE(r.rot_mean_deg == Approx(0.0).margin(1e-4));
 }
 
-TEST_CASE("TUM files round-trip stamps exactly and reject malformed lines") {
-  Trajectory t{{976052857337530LL, Pose2{1.5f, -2.0f, 3.0f}}};
-  std::stringstream s;
-  dpcr::eval::WriteTum(s, t);
-  REQUIRE(s.str().rfind("976052857.337530 1.500000 -2.000000 0 0 0 ", 0) == 0);
-  const Trajectory back = dpcr::eval::ReadTum(s);
-  REQUIRE(back.size() == 1);
-  REQUIRE(back[0].stamp_us == 976052857337530LL);
-  REQUIRE(back[0].pose.theta == Approx(3.0f));
-  std::istringstream bad("1.0 2.0 3.0\n");
-  REQUIRE_THROWS_WITH(dpcr::eval::ReadTum(bad), Catch::Contains("line 1"));
+TEST_CASE("Relations files are read with exact stamps; a bad stamp names the file and line") {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("dpcr_relations_" + std::to_string(::getpid()) + ".txt")).string();
+  {
+    std::ofstream f(path);
+    f << "# t1 t2 x y z roll pitch yaw\n976052857.337530 976052858.1 0.5 -0.25 0 0 0 0.1\n";
+  }
+  const auto rel = dpcr::eval::ReadRelationsFile(path);
+  REQUIRE(rel.size() == 1);
+  REQUIRE(rel[0].t1_us == 976052857337530LL);
+  REQUIRE(rel[0].t2_us == 976052858100000LL);
+  REQUIRE(rel[0].delta.x == 0.5f);
+  REQUIRE(rel[0].delta.theta == 0.1f);
+  {
+    std::ofstream f(path, std::ios::app);
+    f << "1e9 2 0 0 0 0 0 0\n";
+  }
+  REQUIRE_THROWS_WITH(dpcr::eval::ReadRelationsFile(path), Catch::Contains(path + ": line 3: bad timestamp"));
+  std::remove(path.c_str());
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/geometry/pose2.hpp"
+#include "host_sim/eval/stamp_text.hpp"
 
 namespace dpcr::eval {
 
@@ -31,9 +32,6 @@ void ForEachDataLine(std::istream& in, Visitor&& visit) {
     visit(line, text);
   }
 }
-
-// "976052857.337530": seconds with exactly six decimals, so that stamps round-trip exactly.
-std::string FormatStamp(std::int64_t stamp_us);
 
 void WriteTum(std::ostream& out, const Trajectory& trajectory);
 // Throws std::runtime_error("line N: reason") on malformed input.

@@ -1,4 +1,4 @@
-#include "tools/eval/trajectory.hpp"
+#include "host_sim/eval/trajectory.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -6,18 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "host_sim/carmen/carmen_reader.hpp"
-
 namespace dpcr::eval {
-
-std::string FormatStamp(std::int64_t stamp_us) {
-  char buf[40];
-  const char* sign = stamp_us < 0 ? "-" : "";
-  const std::int64_t a = stamp_us < 0 ? -stamp_us : stamp_us;
-  std::snprintf(buf, sizeof(buf), "%s%lld.%06lld", sign, static_cast<long long>(a / 1000000),
-                static_cast<long long>(a % 1000000));
-  return buf;
-}
 
 void WriteTum(std::ostream& out, const Trajectory& trajectory) {
   char buf[160];
@@ -39,9 +28,7 @@ Trajectory ReadTum(std::istream& in) {
       throw std::runtime_error("line " + std::to_string(line) + ": expected 't x y z qx qy qz qw'");
     }
     StampedPose p;
-    try {
-      p.stamp_us = dpcr::carmen::ParseStampMicros(stamp);
-    } catch (const std::exception&) {
+    if (!ParseStamp(stamp, &p.stamp_us)) {
       throw std::runtime_error("line " + std::to_string(line) + ": bad timestamp '" + stamp + "'");
     }
     p.pose.x = static_cast<float>(x);

@@ -1,4 +1,4 @@
-#include "tools/eval/accuracy.hpp"
+#include "host_sim/eval/accuracy.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "host_sim/carmen/carmen_reader.hpp"
+#include "host_sim/eval/stamp_text.hpp"
 
 namespace dpcr::eval {
 namespace {
@@ -124,10 +124,7 @@ std::vector<Relation> ReadRelationsFile(const std::string& path) {
       throw std::runtime_error(path + ": line " + std::to_string(line) + ": expected 't1 t2 x y z roll pitch yaw'");
     }
     Relation r;
-    try {
-      r.t1_us = dpcr::carmen::ParseStampMicros(t1);
-      r.t2_us = dpcr::carmen::ParseStampMicros(t2);
-    } catch (const std::exception&) {
+    if (!ParseStamp(t1, &r.t1_us) || !ParseStamp(t2, &r.t2_us)) {
       throw std::runtime_error(path + ": line " + std::to_string(line) + ": bad timestamp");
     }
     r.delta = dpcr::Pose2{static_cast<float>(x), static_cast<float>(y), static_cast<float>(yaw)};

@@ -1,0 +1,176 @@
+#include "board/firmware.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <vector>
+
+#include "hal/map_export.hpp"
+
+namespace dpcr::board {
+
+// The device pipeline's outputs into the mapper, scans counted for the status line.
+class Firmware::MapperSink : public DeviceSink {
+ public:
+  explicit MapperSink(BoardMapper* mapper) : mapper_(mapper) {}
+  void AddOdometry(const OdometrySample& sample) override { mapper_->AddOdometry(sample); }
+  void AddScan(const DeviceScan& scan) override {
+    static_cast<void>(mapper_->AddScan(scan));  // rejections are counted by the mapper
+    ++scans;
+  }
+  std::uint32_t scans = 0;
+
+ private:
+  BoardMapper* mapper_;
+};
+
+struct Firmware::SaveResult {
+  bool ok = false;
+  int width = 0;
+  int height = 0;
+  std::string error;
+};
+
+Firmware::Firmware(const FirmwareConfig& config, const FirmwarePorts& ports, std::FILE* log)
+    : config_(config), ports_(ports), log_(log) {}
+
+Firmware::~Firmware() = default;
+
+std::uint32_t Firmware::scans() const { return sink_ ? sink_->scans : 0; }
+
+bool Firmware::Start() {
+  if (config_.wheels.Validate() != Status::kOk) {
+    std::fprintf(log_, "dpcr-firmware: error: invalid wheel configuration\n");
+    return false;
+  }
+  mapper_ = std::make_unique<BoardMapper>();
+  if (mapper_->Init(MapperConfig{}) != Status::kOk) {
+    std::fprintf(log_, "dpcr-firmware: error: mapper configuration rejected\n");
+    return false;
+  }
+  sink_ = std::make_unique<MapperSink>(mapper_.get());
+  DevicePipelineConfig pipeline;
+  pipeline.lidar.kind = config_.lidar;
+  pipeline.lidar.assembler.angle_map = config_.angle_map;
+  pipeline.wheels = config_.wheels;
+  pipeline_ = std::make_unique<DevicePipeline>(pipeline, sink_.get());
+  start_us_ = ports_.clock->NowUs();
+  next_status_us_ = start_us_ + config_.status_period_ms * 1000LL;
+  next_save_us_ = config_.autosave_s > 0 ? start_us_ + config_.autosave_s * 1000000LL : INT64_MAX;
+  last_lidar_us_ = start_us_;
+  return true;
+}
+
+bool Firmware::ServiceLidar() {
+  const ByteRead r = ports_.lidar->Read(buffer_, sizeof(buffer_));
+  if (r.status == IoStatus::kWouldBlock) return true;
+  if (r.status != IoStatus::kOk) {
+    std::fprintf(log_, "dpcr-firmware: error: lidar UART %s: %s\n", config_.uart_device.c_str(),
+                 r.status == IoStatus::kEndOfStream ? "end of file" : std::strerror(errno));
+    return false;
+  }
+  pipeline_->FeedAllLidar(buffer_, r.size, r.stamp_us);
+  if (pipeline_->last_lidar_packet_us() != 0) last_lidar_us_ = r.stamp_us;
+  return true;
+}
+
+bool Firmware::ServiceCan() {
+  for (;;) {
+    const CanRead r = ports_.can->Read();
+    if (r.status == IoStatus::kWouldBlock) return true;
+    if (r.status != IoStatus::kOk) {
+      std::fprintf(log_, "dpcr-firmware: error: CAN %s: %s\n", config_.can_interface.c_str(),
+                   r.status == IoStatus::kEndOfStream ? "closed" : std::strerror(errno));
+      return false;
+    }
+    pipeline_->FeedCan(r.frame, r.stamp_us);
+  }
+}
+
+bool Firmware::LidarSilent() {
+  if (ports_.clock->NowUs() - last_lidar_us_ <= config_.lidar_timeout_ms * 1000LL) return false;
+  std::fprintf(log_, "dpcr-firmware: error: lidar timeout: no packet from %s for %d ms\n",
+               config_.uart_device.c_str(), config_.lidar_timeout_ms);
+  return true;
+}
+
+void Firmware::ServiceTimers() {
+  const std::int64_t now = ports_.clock->NowUs();
+  if (now >= next_status_us_) {
+    PrintStatus(now);
+    next_status_us_ = now + config_.status_period_ms * 1000LL;
+  }
+  if (now >= next_save_us_) {
+    const SaveResult r = SaveMap();
+    if (!r.ok) std::fprintf(log_, "dpcr-firmware: autosave: %s\n", r.error.c_str());
+    next_save_us_ = now + config_.autosave_s * 1000000LL;
+  }
+}
+
+void Firmware::PrintStatus(std::int64_t now_us) {
+  const double period_s = static_cast<double>(config_.status_period_ms) / 1000.0;
+  const DevicePipelineCounters counters = pipeline_->counters();
+  const LidarStreamCounters& lc = counters.lidar;
+  const WheelCanCounters& cc = counters.can;
+  const Pose2 pose = mapper_->pose();
+  std::fprintf(log_,
+               "dpcr-firmware: t=%.1fs scan_rate=%.1f/s packets=%u bad=%u resyncs=%u gaps=%u "
+               "can_lost=%u dup=%u reord=%u err=%u pose=(%.3f,%.3f,%.3f) mapper=%s\n",
+               static_cast<double>(now_us - start_us_) / 1e6,
+               static_cast<double>(sink_->scans - scans_at_last_status_) / period_s, lc.packets, lc.bad_packets,
+               lc.resyncs, lc.gaps, cc.lost, cc.duplicated, cc.reordered, cc.error_frames,
+               static_cast<double>(pose.x), static_cast<double>(pose.y), static_cast<double>(pose.theta),
+               ToString(mapper_->status()));
+  std::fflush(log_);
+  scans_at_last_status_ = sink_->scans;
+}
+
+// Renders the fused map and stores map.pgm, then map.yaml: a YAML never names an incomplete image.
+Firmware::SaveResult Firmware::SaveMap() {
+  SaveResult r;
+  const CellBox box = mapper_->MapBounds();
+  r.width = box.width();
+  r.height = box.height();
+  if (r.width <= 0 || r.height <= 0) {
+    r.error = "map is empty, nothing saved";
+    return r;
+  }
+  std::vector<std::int16_t> cells(static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height));
+  if (mapper_->RenderMap(box, Span<std::int16_t>(cells.data(), cells.size())) != Status::kOk) {
+    r.error = "map rendering failed";
+    return r;
+  }
+  std::vector<std::uint8_t> pgm(PgmSize(r.width, r.height));
+  const std::size_t pgm_size = EncodePgm(Span<const std::int16_t>(cells.data(), cells.size()), r.width, r.height,
+                                         Span<std::uint8_t>(pgm.data(), pgm.size()));
+  char yaml[512];
+  const std::size_t yaml_size =
+      EncodeMapYaml("map.pgm", mapper_->config().grid.resolution_m, box, Span<char>(yaml, sizeof(yaml)));
+  if (pgm_size == 0 || yaml_size == 0) {
+    r.error = "map encoding failed";
+    return r;
+  }
+  r.ok = Store("map.pgm", pgm.data(), pgm_size, &r.error) &&
+         Store("map.yaml", reinterpret_cast<const std::uint8_t*>(yaml), yaml_size, &r.error);
+  return r;
+}
+
+bool Firmware::Store(const char* name, const std::uint8_t* data, std::size_t size, std::string* error) {
+  if (ports_.storage->Write(name, data, size) == IoStatus::kOk) return true;
+  *error = config_.map_dir + "/" + name + ": " + std::strerror(errno);
+  return false;
+}
+
+int Firmware::Finish(int exit_code) {
+  const SaveResult saved = SaveMap();
+  if (saved.ok) {
+    std::fprintf(log_, "dpcr-firmware: map saved to %s/map.pgm (%dx%d), %u scans\n", config_.map_dir.c_str(),
+                 saved.width, saved.height, sink_->scans);
+  } else {
+    std::fprintf(log_, "dpcr-firmware: error: map not saved: %s\n", saved.error.c_str());
+    if (exit_code == 0) exit_code = 1;
+  }
+  std::fflush(log_);
+  return exit_code;
+}
+
+}  // namespace dpcr::board

@@ -1,0 +1,48 @@
+#include "hal/device_pipeline.hpp"
+
+namespace dpcr {
+
+DevicePipeline::DevicePipeline(const DevicePipelineConfig& config, DeviceSink* sink)
+    : sink_(sink), lidar_(config.lidar), odometry_(config.wheels) {}
+
+std::size_t DevicePipeline::FeedLidar(const std::uint8_t* data, std::size_t size, std::int64_t arrival_us) {
+  const std::size_t used = lidar_.Feed(data, size, arrival_us);
+  if (lidar_.revolution_ready()) {
+    lidar_.TakeScan(&scan_);
+    ++scans_;
+    sink_->AddScan(scan_);
+  }
+  return used;
+}
+
+void DevicePipeline::FeedAllLidar(const std::uint8_t* data, std::size_t size, std::int64_t arrival_us) {
+  std::size_t used = 0;
+  while (used < size) used += FeedLidar(data + used, size - used, arrival_us);
+}
+
+void DevicePipeline::FeedCan(const CanFrame& frame, std::int64_t received_us) {
+  const CanDecodeResult decoded = wheels_.Feed(frame);
+  if (decoded == CanDecodeResult::kGyro) {
+    gyro_ = wheels_.gyro();
+    have_gyro_ = true;
+    return;
+  }
+  if (decoded != CanDecodeResult::kTicks) return;
+  const std::int64_t stamp_us = wheel_time_.ToHostUs(wheels_.ticks().device_time_us, received_us);
+  OdometrySample sample = odometry_.Update(wheels_.ticks(), stamp_us);
+  sample.has_gyro = have_gyro_;
+  sample.gyro_yaw_rate = gyro_.yaw_rate_rad_s;
+  ++odometry_samples_;
+  sink_->AddOdometry(sample);
+}
+
+DevicePipelineCounters DevicePipeline::counters() const {
+  DevicePipelineCounters c;
+  c.lidar = lidar_.counters();
+  c.can = wheels_.counters();
+  c.scans = scans_;
+  c.odometry = odometry_samples_;
+  return c;
+}
+
+}  // namespace dpcr

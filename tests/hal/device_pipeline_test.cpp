@@ -1,0 +1,142 @@
+// The device pipeline: lidar bytes reach the sink as the revolutions a hand-driven LidarStream
+// assembles, CAN frames as the odometry DiffDriveOdometry integrates, on the wheel board's clock
+// and carrying the last gyro rate.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hal/device_pipeline.hpp"
+#include "lidar_stream_helpers.hpp"
+
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+
+struct RecordingSink : dpcr::DeviceSink {
+  void AddOdometry(const dpcr::OdometrySample& sample) override {
+    odometry.push_back(sample);
+    order.push_back('o');
+  }
+  void AddScan(const dpcr::DeviceScan& scan) override {
+    scans.push_back(std::make_unique<dpcr::DeviceScan>(scan));
+    order.push_back('s');
+  }
+  std::vector<dpcr::OdometrySample> odometry;
+  std::vector<std::unique_ptr<dpcr::DeviceScan>> scans;
+  std::vector<char> order;
+};
+
+dpcr::CanFrame Ticks(std::uint16_t left, std::uint16_t right, std::uint8_t sequence, std::uint32_t time_10us) {
+  dpcr::WheelTicksFrame f;
+  f.left_ticks = left;
+  f.right_ticks = right;
+  f.sequence = sequence;
+  f.time_10us = time_10us;
+  return dpcr::EncodeWheelFrame(f);
+}
+
+dpcr::CanFrame Gyro(std::int16_t mrad_s, std::uint8_t sequence, std::uint32_t time_10us) {
+  dpcr::GyroFrame g;
+  g.yaw_rate_mrad_s = mrad_s;
+  g.sequence = sequence;
+  g.time_10us = time_10us;
+  return dpcr::EncodeGyroFrame(g);
+}
+
+}  // namespace
+
+TEST_CASE("pipeline: lidar bytes become the assembler's revolutions, one per FeedLidar call") {
+  const std::vector<std::uint8_t> bytes = dpcr_test::EncodeAll(dpcr_test::MakeLd06Packets(3, 3600, 100));
+  RecordingSink sink;
+  auto pipeline = std::make_unique<dpcr::DevicePipeline>(dpcr::DevicePipelineConfig{}, &sink);
+  const std::int64_t arrival_us = 5000000;
+  const std::size_t first = pipeline->FeedLidar(bytes.data(), bytes.size(), arrival_us);
+  CHECK(first < bytes.size());  // stopped at the end of the first revolution
+  CHECK(first % dpcr::kLd06PacketBytes == 0);
+  REQUIRE(sink.scans.size() == 1);
+  pipeline->FeedAllLidar(bytes.data() + first, bytes.size() - first, arrival_us);
+
+  // The oracle: the same bytes through a LidarStream driven by hand.
+  auto stream = std::make_unique<dpcr::LidarStream>();
+  auto expected = std::make_unique<dpcr::DeviceScan>();
+  std::size_t used = 0, revolution = 0;
+  while (used < bytes.size()) {
+    used += stream->Feed(bytes.data() + used, bytes.size() - used, arrival_us);
+    if (!stream->revolution_ready()) continue;
+    stream->TakeScan(expected.get());
+    REQUIRE(revolution < sink.scans.size());
+    const dpcr::DeviceScan& got = *sink.scans[revolution++];
+    CHECK(got.stamp_us == expected->stamp_us);
+    REQUIRE(got.beams.size() == expected->beams.size());
+    for (std::size_t i = 0; i < got.beams.size(); ++i) {
+      REQUIRE(got.beams[i].range_m == expected->beams[i].range_m);
+      REQUIRE(got.beams[i].angle_rad == expected->beams[i].angle_rad);
+    }
+  }
+  CHECK(revolution == 2);  // the third revolution never closes
+  CHECK(sink.scans.size() == 2);
+  const dpcr::DevicePipelineCounters c = pipeline->counters();
+  CHECK(c.scans == 2);
+  CHECK(c.lidar.revolutions == 2);
+  CHECK(c.lidar.packets == bytes.size() / dpcr::kLd06PacketBytes);
+  CHECK(pipeline->last_lidar_packet_us() != 0);
+}
+
+TEST_CASE("pipeline: ticks frames become odometry, gyro frames set the rate the next samples carry") {
+  RecordingSink sink;
+  dpcr::DevicePipelineConfig config;
+  config.wheels.wheel_radius_m = 0.05f;
+  config.wheels.ticks_per_rev = 1000.0f;
+  auto pipeline = std::make_unique<dpcr::DevicePipeline>(config, &sink);
+  pipeline->FeedCan(Ticks(100, 100, 0, 0), 1000000);
+  pipeline->FeedCan(Ticks(300, 300, 1, 1000), 1010000);   // 200 ticks forward
+  pipeline->FeedCan(Gyro(-250, 0, 1500), 1015000);        // no sample of its own
+  dpcr::CanFrame foreign = Ticks(0, 0, 2, 2000);
+  foreign.id = 0x300;
+  pipeline->FeedCan(foreign, 1018000);                    // ignored
+  pipeline->FeedCan(Ticks(500, 500, 2, 2000), 1020000);   // 200 more
+
+  REQUIRE(sink.odometry.size() == 3);
+  const double m_per_tick = kTwoPi * 0.05 / 1000.0;
+  CHECK(sink.odometry[0].pose.x == 0.0f);
+  CHECK(sink.odometry[1].pose.x == Approx(200 * m_per_tick).epsilon(1e-5));
+  CHECK(sink.odometry[2].pose.x == Approx(400 * m_per_tick).epsilon(1e-5));
+  CHECK(sink.odometry[2].pose.y == Approx(0.0).margin(1e-6));
+  CHECK_FALSE(sink.odometry[0].has_gyro);
+  CHECK_FALSE(sink.odometry[1].has_gyro);
+  CHECK(sink.odometry[2].has_gyro);
+  CHECK(sink.odometry[2].gyro_yaw_rate == Approx(-0.25f));
+  const dpcr::DevicePipelineCounters c = pipeline->counters();
+  CHECK(c.odometry == 3);
+  CHECK(c.can.ticks_frames == 3);
+  CHECK(c.can.gyro_frames == 1);
+  CHECK(c.can.foreign == 1);
+}
+
+TEST_CASE("pipeline: odometry stamps follow the wheel board's clock, anchored at the first frame") {
+  RecordingSink sink;
+  auto pipeline = std::make_unique<dpcr::DevicePipeline>(dpcr::DevicePipelineConfig{}, &sink);
+  // Device time 0, 10, 20 ms; the middle frame reaches the host 3 ms late.
+  pipeline->FeedCan(Ticks(0, 0, 0, 0), 7000000);
+  pipeline->FeedCan(Ticks(10, 10, 1, 1000), 7013000);
+  pipeline->FeedCan(Ticks(20, 20, 2, 2000), 7020000);
+  REQUIRE(sink.odometry.size() == 3);
+  CHECK(sink.odometry[0].stamp_us == 7000000);
+  CHECK(sink.odometry[1].stamp_us == 7010000);
+  CHECK(sink.odometry[2].stamp_us == 7020000);
+}
+
+TEST_CASE("pipeline: frames and revolutions reach the sink in the order they were fed") {
+  // Three turns close two revolutions: a frame fed between them must arrive between them.
+  const std::vector<std::uint8_t> bytes = dpcr_test::EncodeAll(dpcr_test::MakeLd06Packets(3, 3600, 100));
+  RecordingSink sink;
+  auto pipeline = std::make_unique<dpcr::DevicePipeline>(dpcr::DevicePipelineConfig{}, &sink);
+  pipeline->FeedCan(Ticks(0, 0, 0, 0), 1000);
+  const std::size_t used = pipeline->FeedLidar(bytes.data(), bytes.size(), 2000);
+  pipeline->FeedCan(Ticks(5, 5, 1, 100), 3000);
+  pipeline->FeedAllLidar(bytes.data() + used, bytes.size() - used, 4000);
+  CHECK(std::string(sink.order.begin(), sink.order.end()) == "osos");
+}
