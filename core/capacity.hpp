@@ -29,9 +29,9 @@ struct VacuumProfile {
   // if regional maps did not overlap (they do, by the margin).
   static constexpr int kTilePoolTiles = 600;
   // Regions of 4 m over a 200 m² home: ~13 needed, with room for re-mapping and odd layouts.
-  static constexpr int kMaxRegions = 48;
+  static constexpr int kMaxRegions = 40;
   // A regional map's index box in tiles per side (8 x 32 cells x 5 cm = 12.8 m: S = 4 m plus a 4.4 m margin).
-  static constexpr int kRegionBoxTiles = 8;
+  static constexpr int kRegionBoxTiles = 6;
   // Scans kept in the submap ring (the paper's N = 20 is the default, this the most).
   static constexpr int kSubmapMaxScans = 20;
   // Robot-centred submap: 256 x 256 cells = 12.8 m at 5 cm.

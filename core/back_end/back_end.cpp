@@ -179,6 +179,13 @@ LoopClosureResult BackEnd::TryLoopClosure(Span<RegionalMap> regions, int region,
   const CorrelativeSearchResult found = CorrelativeSearch(*s_.match_grid, Span<const Point2>(s_.cloud.data(), n), guess,
                                                           window_m, window_rad, config_.search, s_.rotated);
   out.search_score = found.score;
+  trace_ = ClosureTrace{};
+  trace_.region = region;
+  trace_.from = from;
+  trace_.path_m = path_m;
+  trace_.window_m = window_m;
+  trace_.search = found;
+  trace_.guess = guess;
   // A weak or ambiguous search: the guess itself may still be within PLICP's basin.
   const Pose2 start = found.verdict == Status::kOk ? found.pose : guess;
   // 2. Refined by PLICP against the map's lines.
@@ -186,6 +193,9 @@ LoopClosureResult BackEnd::TryLoopClosure(Span<RegionalMap> regions, int region,
   out.used_reference = true;
   const RegistrationResult r =
       RegisterImproved(*s_.reference, cloud, start, nullptr, config_.closure_registration, s_.correspondences);
+  trace_.refinement = r.verdict;
+  trace_.inlier_ratio = r.inlier_ratio;
+  trace_.mean_residual_m = r.mean_residual_m;
   if (r.verdict != Status::kOk) {
     ++counters_.loop_closures_rejected;
     out.verdict = Status::kRejected;
@@ -226,6 +236,7 @@ bool BackEnd::AddClosure(Span<RegionalMap> regions, int region, int from, const 
   e.information = RegistrationInformation(carried, z);
   e.kind = EdgeKind::kLoop;
   const Status added = g.AddEdgeIfConsistent(e, config_.optimizer, config_.max_edge_chi2);
+  trace_.graph = added;
   if (added != Status::kOk) {
     ++counters_.loop_closures_rejected;
     if (added == Status::kRejected) ++counters_.loop_closures_inconsistent;

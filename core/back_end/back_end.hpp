@@ -51,6 +51,20 @@ struct BackEndStorage {
   Span<std::int32_t> jobs;  // queued jobs, at least regions + 1
 };
 
+// The last loop-closure attempt, for diagnostics (search, refinement, graph).
+struct ClosureTrace {
+  int region = -1;
+  int from = -1;
+  float path_m = 0.0f;
+  float window_m = 0.0f;
+  CorrelativeSearchResult search;
+  Pose2 guess;
+  Status refinement = Status::kNotEnoughData;
+  float inlier_ratio = 0.0f;
+  float mean_residual_m = 0.0f;
+  Status graph = Status::kNotEnoughData;
+};
+
 // What a loop-closure attempt decided.
 struct LoopClosureResult {
   Status verdict = Status::kNotEnoughData;  // kOk: accepted and the graph optimised
@@ -93,6 +107,7 @@ class BackEnd {
   bool AddClosure(Span<RegionalMap> regions, int region, int from, const RegistrationResult& r, const Pose2& submap_world);
 
   const BackEndCounters& counters() const { return counters_; }
+  const ClosureTrace& last_closure() const { return trace_; }
   const PoseGraph& graph() const { return *s_.graph; }
   bool busy() const { return job_count_ > 0; }
 
@@ -113,6 +128,7 @@ class BackEnd {
   float region_width_m_ = 4.0f;
   std::int16_t obstacle_threshold_ = 3000;
   BackEndCounters counters_;
+  ClosureTrace trace_;
   int job_head_ = 0;
   int job_count_ = 0;
 };

@@ -15,6 +15,15 @@ constexpr PlicpConfig MapRegistrationConfig() {
   return c;
 }
 
+// PLICP refining a closure: the submap reaches past the re-entered map's box and sees what that
+// map never saw, so a third of its points may find no wall in it; the search's uniqueness and
+// the graph's consistency check guard against a wrong fit.
+constexpr PlicpConfig ClosureRegistrationConfig() {
+  PlicpConfig c;
+  c.min_inlier_ratio = 0.3f;
+  return c;
+}
+
 struct BackEndConfig {
   bool enable = true;
   // Map-to-map edges (paper Eqs. 10-11): regions whose anchors are within alpha S, both holding
@@ -54,7 +63,7 @@ struct BackEndConfig {
   // Map-to-map registrations; the refinement of a closure (the submap lies inside the map it
   // re-enters, so the usual inlier ratio holds).
   PlicpConfig registration = MapRegistrationConfig();
-  PlicpConfig closure_registration;
+  PlicpConfig closure_registration = ClosureRegistrationConfig();
   // A closure is kept only if, optimised with it, no edge's chi2 exceeds this (pose_graph.hpp).
   float max_edge_chi2 = 25.0f;
   PoseGraphConfig optimizer;

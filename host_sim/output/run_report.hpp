@@ -3,6 +3,8 @@
 #pragma once
 
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -41,6 +43,7 @@ std::uint64_t BackEndWork(const MapperType& mapper) {
 template <class MapperType>
 void AddTimedScan(MapperType& mapper, const typename MapperType::ScanType& scan, RunRecord* run) {
   const std::uint64_t work = BackEndWork(mapper);
+  const std::uint32_t searches = mapper.back_end().counters().loop_searches;
   const auto t0 = std::chrono::steady_clock::now();
   (void)mapper.AddScan(scan);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -48,6 +51,15 @@ void AddTimedScan(MapperType& mapper, const typename MapperType::ScanType& scan,
   run->estimate.push_back({scan.stamp_us, mapper.pose()});
   run->scan_region.push_back(mapper.last_scan_region());
   run->scan_in_region.push_back(mapper.last_scan_in_region());
+  if (std::getenv("DPCR_TRACE_CLOSURES") != nullptr && mapper.back_end().counters().loop_searches != searches) {
+    const auto& t = mapper.back_end().last_closure();
+    std::fprintf(stderr, "closure t=%.1f r%d<-r%d path %.1f win %.2f score %.2f/%.2f d(%.2f %.2f %.3f) plicp %s inl %.2f res %.3f graph %s\n",
+                 static_cast<double>(scan.stamp_us) * 1e-6, t.region, t.from, static_cast<double>(t.path_m),
+                 static_cast<double>(t.window_m), static_cast<double>(t.search.score), static_cast<double>(t.search.second_score),
+                 static_cast<double>(t.search.pose.x - t.guess.x), static_cast<double>(t.search.pose.y - t.guess.y),
+                 static_cast<double>(t.search.pose.theta - t.guess.theta), dpcr::ToString(t.refinement),
+                 static_cast<double>(t.inlier_ratio), static_cast<double>(t.mean_residual_m), dpcr::ToString(t.graph));
+  }
   if (BackEndWork(mapper) != work) {
     ++run->backend_calls;
     run->backend_total_ms += ms;
