@@ -93,6 +93,7 @@ class Mapper {
     s.target = Span<Point2>(target_, kSecondTargetPoints);
     s.scratch = Span<CellIndex>(scratch_, Profile::kMaxBeams);
     s.correspondences = Span<Correspondence>(correspondences_, Profile::kMaxBeams);
+    s.search_grid = &search_grid_;
     return s;
   }
   Span<const PlacedGrid> PlaceRegions(PlacedGrid* placed) const {
@@ -117,6 +118,9 @@ class Mapper {
   CellIndex scratch_[Profile::kMaxBeams];
   // Registration scratch for a scan's points (the second registration's larger target goes without).
   Correspondence correspondences_[Profile::kMaxBeams];
+  // The first registration's coarse search grid: the submap window at 10 cm plus the kernel margin.
+  static constexpr int kSearchGridSide = Profile::kSubmapSideCells / 2 + 16;
+  CoarseScoreGridStorage<kSearchGridSide, kSearchGridSide> search_grid_;
   Pose2 last_increment_pose_;
   FrontEnd front_end_;  // last: constructed from the storage above
 };
