@@ -8,6 +8,7 @@
 #include "core/registration/plicp.hpp"
 #include "core/geometry/pose2.hpp"
 #include "core/registration/registration_reference.hpp"
+#include "core/registration/rotation_search.hpp"
 #include "core/base/status.hpp"
 
 namespace dpcr {
@@ -85,6 +86,18 @@ struct FrontEndConfig {
   // Second registration: at most this many submap obstacle cells as target points.
   int second_registration_max_points = 600;
   PlicpConfig first_registration;
+  // A rejected first registration is tried again from the best pose of a coarse search
+  // (PoseSearchConfig: ±20°, ±0.3 m) on the submap reference; and when the predicted turn since the
+  // last scan exceeds search_turn_rad (0 = never), the search runs first.
+  bool search_on_rejection = true;
+  float search_turn_rad = 0.0f;
+  PoseSearchConfig search;
+  // A weak match (inlier ratio below this, or rejected) rebuilds the submap reference before the
+  // next scan, not K1 scans later, with the obstacle threshold lowered to weak_match_obstacle_
+  // threshold (one hit not yet missed): walls seen for the first time (a fast turn with a 180° lidar,
+  // 0.2 m between scans) enter the reference now. 0 = off.
+  float weak_match_inlier_ratio = 0.6f;
+  std::int16_t weak_match_obstacle_threshold = 800;
   PlicpConfig second_registration;
   // Obstacle thresholds (Q10 log-odds) of the two references. The submap holds unclamped sums
   // of its N scans: 2000 = hit in about three scans more than missed (a young submap asks for

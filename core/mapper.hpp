@@ -115,6 +115,7 @@ class Mapper {
     s.back_end.rotated = Span<Point2>(search_rotated_, kSearchPoints);
     s.back_end.correspondences = s.correspondences;
     s.back_end.jobs = Span<std::int32_t>(back_end_jobs_, Profile::kMaxRegions + 1);
+    s.search_grid = &search_grid_;
     return s;
   }
   Span<const PlacedGrid> PlaceRegions(PlacedGrid* placed) const {
@@ -145,6 +146,9 @@ class Mapper {
   Point2 back_end_cloud_[kBackEndCloudPoints];
   Point2 search_rotated_[kSearchPoints];
   std::int32_t back_end_jobs_[Profile::kMaxRegions + 1];
+  // The first registration's coarse search grid: the submap window at 10 cm plus the kernel margin.
+  static constexpr int kSearchGridSide = Profile::kSubmapSideCells / 2 + 16;
+  CoarseScoreGridStorage<kSearchGridSide, kSearchGridSide> search_grid_;
   Pose2 last_increment_pose_;
   FrontEnd front_end_;  // last: constructed from the storage above
 };

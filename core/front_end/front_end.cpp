@@ -21,7 +21,8 @@ Status FrontEnd::Init(const MapperConfig& config) {
   fe_counters_ = FrontEndCounters{};
   odometry_.Clear();
   pose_ = submap_pose_ = last_odom_ = Pose2::Identity();
-  have_odom_ = have_scan_ = false;
+  have_odom_ = have_scan_ = weak_match_ = false;
+  search_grid_version_ = 0;
   consecutive_rejections_ = 0;
   reference_maps_[0] = reference_maps_[1] = -1;
   scans_since_submap_lines_ = scans_since_second_ = second_registrations_since_region_lines_ = 0;
@@ -118,12 +119,19 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
 
 void FrontEnd::RebuildSubmapReferenceIfDue() {
   const FrontEndConfig& f = config_.front_end;
-  if (scans_since_submap_lines_ >= static_cast<std::uint32_t>(f.submap_line_period) ||
+  // After a weak match, early (the scans since the last build hold what the reference lacks), but
+  // not on every scan of a weak streak: line extraction costs about a registration.
+  const bool early = weak_match_ && scans_since_submap_lines_ >= kMinScansBetweenEarlyBuilds;
+  if (scans_since_submap_lines_ >= static_cast<std::uint32_t>(f.submap_line_period) || early ||
       fe_counters_.submap_line_builds == 0) {
     // A young submap cannot reach the threshold: ask for a hit in every scan it holds so far.
     ReferenceConfig reference = f.submap_reference;
     const int reachable = s_.submap->size() * config_.grid.hit_delta - 1;
     if (reachable < reference.obstacle_threshold) reference.obstacle_threshold = static_cast<std::int16_t>(reachable);
+    if (early && f.weak_match_obstacle_threshold < reference.obstacle_threshold) {
+      reference.obstacle_threshold = f.weak_match_obstacle_threshold;
+      ++fe_counters_.submap_early_builds;
+    }
     ReferenceBuildStats stats;
     const Status s = s_.submap_reference->Build(s_.submap->grid(), s_.submap->grid().box(), reference, &stats);
     if (s != Status::kOk) fe_counters_.reference_cells_dropped += static_cast<std::uint32_t>(stats.dropped_cells);
@@ -146,11 +154,13 @@ void FrontEnd::RefitSubmapLines() {
 
 void FrontEnd::RegisterScan(std::size_t hits, const Pose2& predicted) {
   const FrontEndConfig& f = config_.front_end;
-  const PosePrior prior{predicted, f.prior_info_xy, f.prior_info_theta};
   const RegistrationResult r =
-      RegisterImproved(*s_.submap_reference, Span<const Point2>(s_.hits.data(), hits), predicted, &prior,
-                       f.first_registration, s_.correspondences);
+      // In a rejection streak the search runs on every other scan (each search that did not help
+      // is followed by one PLICP-only attempt): the streak's cost stays bounded.
+      RegisterFirst(*s_.submap_reference, consecutive_rejections_ % 2 == 0 ? s_.search_grid : nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
+                    Span<const Point2>(s_.hits.data(), hits), pose_, predicted, f, s_.correspondences, &fe_counters_.search);
   ++fe_counters_.first_registrations;
+  weak_match_ = r.verdict != Status::kOk || r.inlier_ratio < f.weak_match_inlier_ratio;
   if (r.verdict == Status::kOk) {
     pose_ = r.pose;
     consecutive_rejections_ = 0;

@@ -16,6 +16,7 @@
 #include "core/back_end/back_end.hpp"
 #include "core/base/stage.hpp"
 #include "core/config.hpp"
+#include "core/front_end/first_registration.hpp"
 #include "core/front_end/odometry_buffer.hpp"
 #include "core/front_end/region_set.hpp"
 #include "core/front_end/region_tracker.hpp"
@@ -38,6 +39,8 @@ struct FrontEndCounters {
   std::uint32_t submap_line_builds = 0;
   std::uint32_t region_line_builds = 0;
   std::uint32_t reference_cells_dropped = 0;  // obstacle cells past a reference's capacity
+  std::uint32_t submap_early_builds = 0;      // submap references rebuilt after a weak match
+  FirstRegistrationStats search;               // the coarse pose search of the first registration
 };
 
 struct FrontEndStorage {
@@ -51,6 +54,7 @@ struct FrontEndStorage {
   Span<CellIndex> scratch;  // the RegionSet's InsertRays scratch, kMaxBeams
   Span<Correspondence> correspondences;  // registration scratch, kMaxBeams
   BackEndStorage back_end;
+  CoarseScoreGrid* search_grid = nullptr;  // the first registration's coarse search (null: none)
 };
 
 class FrontEnd {
@@ -118,6 +122,9 @@ class FrontEnd {
   Pose2 pose_;         // robot in the submap frame
   Pose2 submap_pose_;  // submap frame in the world
   Pose2 last_odom_;
+  static constexpr std::uint32_t kMinScansBetweenEarlyBuilds = 2;
+  bool weak_match_ = false;  // the last first registration matched weakly (see FrontEndConfig)
+  std::uint32_t search_grid_version_ = 0;  // submap_line_builds when the search grid was built
   bool have_odom_ = false;
   bool have_scan_ = false;
   int consecutive_rejections_ = 0;

@@ -1,0 +1,31 @@
+// The first registration (scan -> submap) with its recovery: improved PLICP from the prediction,
+// and when that is rejected or the prediction is doubtful (a fast turn), a coarse pose search
+// (core/registration/rotation_search.hpp) on the submap reference, then PLICP again from the
+// search's best pose. The search runs only then: on intel 1-2 % of scans.
+#pragma once
+
+#include <cstdint>
+
+#include "core/base/span.hpp"
+#include "core/config.hpp"
+#include "core/geometry/pose2.hpp"
+#include "core/registration/plicp.hpp"
+#include "core/registration/registration_reference.hpp"
+#include "core/registration/rotation_search.hpp"
+
+namespace dpcr {
+
+struct FirstRegistrationStats {
+  std::uint32_t searches = 0;         // coarse searches run
+  std::uint32_t search_recoveries = 0;  // registrations accepted thanks to a search
+  std::uint32_t search_grid_builds = 0;
+};
+
+// `grid_version` / `reference_version`: the score grid is rebuilt from `ref` only when a search
+// needs it and the reference changed since (versions differ).
+RegistrationResult RegisterFirst(const RegistrationReference& ref, CoarseScoreGrid* grid, std::uint32_t* grid_version,
+                                 std::uint32_t reference_version, Span<const Point2> points, const Pose2& previous,
+                                 const Pose2& predicted, const FrontEndConfig& config, Span<Correspondence> scratch,
+                                 FirstRegistrationStats* stats);
+
+}  // namespace dpcr
