@@ -65,7 +65,7 @@ struct BackEndConfig {
   PlicpConfig registration = MapRegistrationConfig();
   PlicpConfig closure_registration = ClosureRegistrationConfig();
   // A closure is kept only if, optimised with it, no edge's chi2 exceeds this (pose_graph.hpp).
-  float max_edge_chi2 = 25.0f;
+  float max_edge_chi2 = 100.0f;
   PoseGraphConfig optimizer;
 };
 
