@@ -2,7 +2,9 @@
 # Installs what a fresh Debian 12 machine lacks to build dpcr, in three levels:
 #   --host   build and run the host apps (scripts/demo.sh: dpcr-sim)
 #   --tests  + Catch2 and valgrind: the host test suite (scripts/test.sh, dpcr-bench)
-#   --all    + cross compilers, qemu-user and the bare-metal toolchain (.ci/run; the default)
+#   --all    + cross compilers, qemu-user, the bare-metal toolchain, and qemu-system-arm + cpio
+#            for tools/emulated-board-test (.ci/run; the default). The emulated board's own
+#            kernel and busybox are fetched by that tool with apt-get download, not installed.
 # Idempotent: installs only missing packages, and says nothing when all are present.
 set -euo pipefail
 
@@ -20,6 +22,7 @@ cross=(
   git
   g++-arm-linux-gnueabihf g++-aarch64-linux-gnu qemu-user   # cross presets + tests under emulation
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib  # baremetal core check
+  qemu-system-arm cpio               # tools/emulated-board-test: the emulated board and its initramfs
 )
 case $level in
   --host) packages=("${host[@]}") ;;
@@ -38,5 +41,7 @@ echo "install-deps: installing ${missing[*]}" >&2
 sudo_cmd=()
 [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
 export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -qq
+# A mirror mid-sync can fail one index (of a foreign architecture added by
+# tools/emulated-board-test, say); the install below still says what is missing.
+"${sudo_cmd[@]}" apt-get update -qq || echo "install-deps: apt-get update reported errors, trying the install" >&2
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
