@@ -19,6 +19,7 @@ class Firmware::MapperSink : public DeviceSink {
     std::int64_t stamp_us;
     int region;
     Pose2 in_region;
+    Pose2 online;  // kept for a scan in no map
   };
   MapperSink(BoardMapper* mapper, std::size_t trajectory_capacity) : mapper_(mapper) {
     trajectory.reserve(trajectory_capacity);
@@ -28,7 +29,8 @@ class Firmware::MapperSink : public DeviceSink {
     static_cast<void>(mapper_->AddScan(scan));  // rejections are counted by the mapper
     ++scans;
     if (trajectory.size() < trajectory.capacity()) {
-      trajectory.push_back({scan.stamp_us, mapper_->last_scan_region(), mapper_->last_scan_in_region()});
+      trajectory.push_back(
+          {scan.stamp_us, mapper_->last_scan_region(), mapper_->last_scan_in_region(), mapper_->pose()});
     } else {
       ++trajectory_overflow;
     }
@@ -68,6 +70,7 @@ bool Firmware::Start() {
   sink_ = std::make_unique<MapperSink>(mapper_.get(), config_.trajectory_path.empty() ? 0 : config_.trajectory_capacity);
   DevicePipelineConfig pipeline;
   pipeline.lidar.kind = config_.lidar;
+  pipeline.lidar.timing = config_.lidar_timing;
   pipeline.lidar.assembler.angle_map = config_.angle_map;
   pipeline.wheels = config_.wheels;
   pipeline_ = std::make_unique<DevicePipeline>(pipeline, sink_.get());
@@ -202,7 +205,7 @@ bool Firmware::WriteTrajectory(std::string* error) const {
     return false;
   }
   for (const MapperSink::ScanRecord& r : sink_->trajectory) {
-    Pose2 pose = r.in_region;
+    Pose2 pose = r.online;
     if (r.region >= 0 && r.region < mapper_->region_count()) pose = mapper_->region_anchor(r.region) * r.in_region;
     const double half = 0.5 * static_cast<double>(pose.theta);
     const std::int64_t s = r.stamp_us / 1000000;

@@ -25,6 +25,7 @@ struct FirmwareConfig {
   int baud = 230400;
   LidarKind lidar = LidarKind::kLd06;
   LidarAngleMap angle_map;                 // upright LD06: clockwise (angle_sign -1)
+  LidarTiming lidar_timing = LidarTiming::kArrival;  // kDeviceClock: LD06 packet stamps
   std::string can_interface = "can0";
   int can_fd = -1;                         // an already-open fd carrying struct can_frame (tests)
   DiffDriveConfig wheels;
