@@ -1,7 +1,9 @@
 #include "board/firmware.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
+#include <sys/resource.h>
 #include <vector>
 
 #include "hal/map_export.hpp"
@@ -9,15 +11,33 @@
 namespace dpcr::board {
 
 // The device pipeline's outputs into the mapper, scans counted for the status line.
+// With a trajectory capacity, each scan's stamp, map and pose in that map are kept (storage
+// reserved at start-up; scans past the capacity are counted, not kept).
 class Firmware::MapperSink : public DeviceSink {
  public:
-  explicit MapperSink(BoardMapper* mapper) : mapper_(mapper) {}
+  struct ScanRecord {
+    std::int64_t stamp_us;
+    int region;
+    Pose2 in_region;
+    Pose2 online;  // kept for a scan in no map
+  };
+  MapperSink(BoardMapper* mapper, std::size_t trajectory_capacity) : mapper_(mapper) {
+    trajectory.reserve(trajectory_capacity);
+  }
   void AddOdometry(const OdometrySample& sample) override { mapper_->AddOdometry(sample); }
   void AddScan(const DeviceScan& scan) override {
     static_cast<void>(mapper_->AddScan(scan));  // rejections are counted by the mapper
     ++scans;
+    if (trajectory.size() < trajectory.capacity()) {
+      trajectory.push_back(
+          {scan.stamp_us, mapper_->last_scan_region(), mapper_->last_scan_in_region(), mapper_->pose()});
+    } else {
+      ++trajectory_overflow;
+    }
   }
   std::uint32_t scans = 0;
+  std::vector<ScanRecord> trajectory;
+  std::uint32_t trajectory_overflow = 0;
 
  private:
   BoardMapper* mapper_;
@@ -47,9 +67,10 @@ bool Firmware::Start() {
     std::fprintf(log_, "dpcr-firmware: error: mapper configuration rejected\n");
     return false;
   }
-  sink_ = std::make_unique<MapperSink>(mapper_.get());
+  sink_ = std::make_unique<MapperSink>(mapper_.get(), config_.trajectory_path.empty() ? 0 : config_.trajectory_capacity);
   DevicePipelineConfig pipeline;
   pipeline.lidar.kind = config_.lidar;
+  pipeline.lidar.timing = config_.lidar_timing;
   pipeline.lidar.assembler.angle_map = config_.angle_map;
   pipeline.wheels = config_.wheels;
   pipeline_ = std::make_unique<DevicePipeline>(pipeline, sink_.get());
@@ -160,7 +181,58 @@ bool Firmware::Store(const char* name, const std::uint8_t* data, std::size_t siz
   return false;
 }
 
+void Firmware::PrintSummary() {
+  const DevicePipelineCounters c = pipeline_->counters();
+  rusage usage{};
+  ::getrusage(RUSAGE_SELF, &usage);
+  std::fprintf(log_,
+               "dpcr-firmware: summary scans=%u rejected=%u odometry=%u packets=%u bad=%u resyncs=%u "
+               "discarded=%u out_of_range=%u revolutions=%u gaps=%u dropouts=%u partial_dropped=%u ticks=%u gyro=%u "
+               "can_lost=%u dup=%u reord=%u err=%u bad_dlc=%u foreign=%u regions=%d peak_rss_kb=%ld\n",
+               sink_->scans, mapper_->counters().scans_rejected, c.odometry, c.lidar.packets, c.lidar.bad_packets,
+               c.lidar.resyncs, c.lidar.discarded_bytes, c.lidar.out_of_range, c.lidar.revolutions, c.lidar.gaps,
+               c.lidar.dropouts, c.lidar.partial_dropped, c.can.ticks_frames, c.can.gyro_frames, c.can.lost, c.can.duplicated,
+               c.can.reordered, c.can.error_frames, c.can.bad_dlc, c.can.foreign, mapper_->region_count(),
+               static_cast<long>(usage.ru_maxrss));
+  std::fflush(log_);
+}
+
+// TUM lines (t x y 0 0 0 qz qw), each scan placed by its map's final anchor, as dpcr-replay does.
+bool Firmware::WriteTrajectory(std::string* error) const {
+  std::FILE* f = std::fopen(config_.trajectory_path.c_str(), "w");
+  if (f == nullptr) {
+    *error = config_.trajectory_path + ": " + std::strerror(errno);
+    return false;
+  }
+  for (const MapperSink::ScanRecord& r : sink_->trajectory) {
+    Pose2 pose = r.online;
+    if (r.region >= 0 && r.region < mapper_->region_count()) pose = mapper_->region_anchor(r.region) * r.in_region;
+    const double half = 0.5 * static_cast<double>(pose.theta);
+    const std::int64_t s = r.stamp_us / 1000000;
+    const std::int64_t us = r.stamp_us % 1000000;
+    std::fprintf(f, "%lld.%06lld %.6f %.6f 0 0 0 %.9f %.9f\n", static_cast<long long>(s),
+                 static_cast<long long>(us < 0 ? -us : us), static_cast<double>(pose.x), static_cast<double>(pose.y),
+                 std::sin(half), std::cos(half));
+  }
+  if (std::fclose(f) != 0) {
+    *error = config_.trajectory_path + ": " + std::strerror(errno);
+    return false;
+  }
+  return true;
+}
+
 int Firmware::Finish(int exit_code) {
+  PrintSummary();
+  if (!config_.trajectory_path.empty()) {
+    std::string error;
+    if (WriteTrajectory(&error)) {
+      std::fprintf(log_, "dpcr-firmware: trajectory of %zu scans written to %s (%u not kept)\n",
+                   sink_->trajectory.size(), config_.trajectory_path.c_str(), sink_->trajectory_overflow);
+    } else {
+      std::fprintf(log_, "dpcr-firmware: error: trajectory not written: %s\n", error.c_str());
+      if (exit_code == 0) exit_code = 1;
+    }
+  }
   const SaveResult saved = SaveMap();
   if (saved.ok) {
     std::fprintf(log_, "dpcr-firmware: map saved to %s/map.pgm (%dx%d), %u scans\n", config_.map_dir.c_str(),

@@ -5,6 +5,7 @@
 // it with capture files and a replay clock (host_sim/drivers).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
@@ -24,6 +25,7 @@ struct FirmwareConfig {
   int baud = 230400;
   LidarKind lidar = LidarKind::kLd06;
   LidarAngleMap angle_map;                 // upright LD06: clockwise (angle_sign -1)
+  LidarTiming lidar_timing = LidarTiming::kArrival;  // kDeviceClock: LD06 packet stamps
   std::string can_interface = "can0";
   int can_fd = -1;                         // an already-open fd carrying struct can_frame (tests)
   DiffDriveConfig wheels;
@@ -31,6 +33,12 @@ struct FirmwareConfig {
   int autosave_s = 60;                     // 0: only on exit
   int lidar_timeout_ms = 2000;             // no packet for this long: reported, exit 2
   int status_period_ms = 1000;
+  // Tests: the per-scan trajectory, written as TUM at exit with the final map anchors (room for
+  // `trajectory_capacity` scans, reserved at start-up); the received streams, recorded as device
+  // files (board/stream_recorder.hpp). Empty: off.
+  std::string trajectory_path;
+  std::size_t trajectory_capacity = 72000;  // two hours at 10 Hz
+  std::string record_dir;
 };
 
 // What the firmware runs on; none is owned.
@@ -67,6 +75,8 @@ class Firmware {
 
   const BoardMapper& mapper() const { return *mapper_; }
   std::uint32_t scans() const;
+  // The device counters and the peak resident set, one line ("dpcr-firmware: summary ...").
+  void PrintSummary();
 
  private:
   class MapperSink;
@@ -74,6 +84,7 @@ class Firmware {
   SaveResult SaveMap();
   bool Store(const char* name, const std::uint8_t* data, std::size_t size, std::string* error);
   void PrintStatus(std::int64_t now_us);
+  bool WriteTrajectory(std::string* error) const;
 
   FirmwareConfig config_;
   FirmwarePorts ports_;

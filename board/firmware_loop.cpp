@@ -9,6 +9,7 @@
 #include "board/monotonic_clock.hpp"
 #include "board/signal_pipe.hpp"
 #include "board/socketcan_port.hpp"
+#include "board/stream_recorder.hpp"
 #include "board/termios_uart.hpp"
 
 namespace dpcr::board {
@@ -18,15 +19,23 @@ constexpr int kPollTimeoutMs = 100;  // the timers' resolution when no device sp
 
 // The board's ports and the stop signal. Each owns its descriptor: whatever the exit path, the
 // devices close and the signal handlers are restored when a BoardPorts goes.
+// With a record directory, the firmware reads through recording decorators.
 struct BoardPorts {
-  explicit BoardPorts(const FirmwareConfig& config) : storage(config.map_dir) {}
-  FirmwarePorts ports() { return FirmwarePorts{&uart, &can, &clock, &storage}; }
+  explicit BoardPorts(const FirmwareConfig& config) : storage(config.map_dir), recording(!config.record_dir.empty()) {}
+  FirmwarePorts ports() {
+    if (recording) return FirmwarePorts{&recorded_uart, &recorded_can, &clock, &storage};
+    return FirmwarePorts{&uart, &can, &clock, &storage};
+  }
 
   MonotonicClock clock;
   TermiosUart uart{&clock};
   SocketCanPort can{&clock};
   AtomicFileStore storage;
   SignalPipe signals;
+  bool recording;
+  StreamRecorder recorder;
+  RecordingByteSource recorded_uart{&uart, &recorder};
+  RecordingCanSource recorded_can{&can, &recorder};
 };
 
 // Start-up: the firmware's state first (configuration checked before any device is touched),
@@ -44,10 +53,17 @@ bool SetUp(const FirmwareConfig& config, Firmware* firmware, BoardPorts* board, 
     std::fprintf(log, "dpcr-firmware: error: CAN %s\n", error.c_str());
     return false;
   }
+  if (board->recording && !board->recorder.Open(config.record_dir, config.can_interface, &error)) {
+    std::fprintf(log, "dpcr-firmware: error: %s\n", error.c_str());
+    return false;
+  }
   if (!board->signals.Open(&error)) {
     std::fprintf(log, "dpcr-firmware: error: %s\n", error.c_str());
     return false;
   }
+  std::fprintf(log, "dpcr-firmware: running: lidar on %s, wheels on %s\n", config.uart_device.c_str(),
+               config.can_fd >= 0 ? "the given fd" : config.can_interface.c_str());
+  std::fflush(log);
   return true;
 }
 
@@ -78,7 +94,10 @@ int Loop(Firmware* firmware, BoardPorts* board, std::FILE* log) {
 }
 
 // The final map save; the ports close when the caller's BoardPorts goes.
-int TearDown(Firmware* firmware, int exit_code) { return firmware->Finish(exit_code); }
+int TearDown(Firmware* firmware, BoardPorts* board, int exit_code) {
+  if (board->recording && !board->recorder.Close() && exit_code == 0) exit_code = 1;
+  return firmware->Finish(exit_code);
+}
 
 }  // namespace
 
@@ -87,7 +106,7 @@ int RunFirmware(const FirmwareConfig& config, std::FILE* log) {
   Firmware firmware(config, board.ports(), log);
   if (!SetUp(config, &firmware, &board, log)) return 1;
   const int exit_code = Loop(&firmware, &board, log);
-  return TearDown(&firmware, exit_code);
+  return TearDown(&firmware, &board, exit_code);
 }
 
 }  // namespace dpcr::board

@@ -13,7 +13,9 @@ void Usage() {
                "usage: dpcr-firmware [--uart DEV] [--baud N] [--lidar ld06|xv11] [--can IFACE]\n"
                "                     [--map-dir DIR] [--autosave S] [--lidar-timeout-ms MS]\n"
                "                     [--angle-sign 1|-1] [--wheel-radius M] [--track-width M] [--ticks-per-rev N]\n"
-               "                     [--can-fd FD]   (an open fd carrying struct can_frame, for tests)\n");
+               "                     [--can-fd FD]   (an open fd carrying struct can_frame, for tests)\n"
+               "                     [--lidar-timing arrival|device] (LD06: stamp packets by their own clock)\n"
+               "                     [--trajectory FILE] (TUM, written at exit) [--record DIR] (received streams)\n");
 }
 
 }  // namespace
@@ -50,6 +52,19 @@ int main(int argc, char** argv) {
       c.can_interface = v;
     } else if (a == "--can-fd") {
       c.can_fd = std::atoi(v);
+    } else if (a == "--lidar-timing") {
+      if (std::strcmp(v, "arrival") == 0) {
+        c.lidar_timing = dpcr::LidarTiming::kArrival;
+      } else if (std::strcmp(v, "device") == 0) {
+        c.lidar_timing = dpcr::LidarTiming::kDeviceClock;
+      } else {
+        std::fprintf(stderr, "dpcr-firmware: error: unknown lidar timing '%s' (arrival, device)\n", v);
+        return 1;
+      }
+    } else if (a == "--trajectory") {
+      c.trajectory_path = v;
+    } else if (a == "--record") {
+      c.record_dir = v;
     } else if (a == "--map-dir") {
       c.map_dir = v;
     } else if (a == "--autosave") {

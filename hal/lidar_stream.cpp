@@ -59,6 +59,7 @@ LidarStreamCounters LidarStream::counters() const {
   const ScanAssemblerCounters& a = assembler_.counters();
   c.revolutions = a.revolutions;
   c.gaps = a.gaps;
+  c.dropouts = a.dropouts;
   c.decimated = a.decimated;
   c.partial_dropped = a.partial_dropped;
   return c;

@@ -32,6 +32,7 @@ struct LidarStreamCounters {
   std::uint32_t invalid_points = 0;   // XV-11 invalid-data flag
   std::uint32_t revolutions = 0;
   std::uint32_t gaps = 0;
+  std::uint32_t dropouts = 0;
   std::uint32_t decimated = 0;
   std::uint32_t partial_dropped = 0;
 };

@@ -75,7 +75,10 @@ void ScanAssembler::AddPoint(float device_deg, float range_m, std::int64_t stamp
 
 bool ScanAssembler::Add(const LidarPacket& packet) {
   const bool was_ready = ready_;
-  if (started_ && packet.count > 0) {
+  if (started_ && packet.count > 0 && packet.stamp_us - last_packet_us_ > config_.max_silence_us) {
+    ++counters_.dropouts;
+    revs_[current_].partial = true;
+  } else if (started_ && packet.count > 0) {
     // Angle from the previous point to this packet's first point, across the wrap.
     const float jump = WrapDeg(packet.start_deg - last_deg_);
     const float step = packet.step_deg > last_step_deg_ ? packet.step_deg : last_step_deg_;
@@ -92,6 +95,7 @@ bool ScanAssembler::Add(const LidarPacket& packet) {
     AddPoint(deg, static_cast<float>(packet.range_mm[i]) * 0.001f, stamp);
   }
   last_step_deg_ = packet.step_deg;
+  if (packet.count > 0) last_packet_us_ = packet.stamp_us;
   return ready_ && !was_ready;
 }
 

@@ -26,6 +26,11 @@ struct ScanAssemblerConfig {
   // The revolution in progress at start-up is dropped unless its first point is this close
   // to the wrap (it would be a partial revolution).
   float start_tolerance_deg = 10.0f;
+  // A packet stamped this long after the previous one follows a dropout (the lidar stopped, or
+  // its line was cut): counted, and the revolution in progress, which would join points from
+  // both sides of the silence, is dropped as partial. An angle-based gap cannot see a silence
+  // of whole turns.
+  std::int64_t max_silence_us = 500000;
 };
 
 struct RevolutionInfo {
@@ -37,8 +42,9 @@ struct RevolutionInfo {
 
 struct ScanAssemblerCounters {
   std::uint32_t revolutions = 0;
-  std::uint32_t partial_dropped = 0;  // the first revolution when it started mid-turn
+  std::uint32_t partial_dropped = 0;  // the first revolution when it started mid-turn, or cut by a dropout
   std::uint32_t gaps = 0;
+  std::uint32_t dropouts = 0;         // silences longer than max_silence_us
   std::uint32_t decimated = 0;
   std::uint32_t points = 0;
   std::uint32_t not_advancing = 0;    // points at or behind the previous angle: dropped
@@ -88,6 +94,7 @@ class ScanAssembler {
   bool started_ = false;
   float last_deg_ = 0.0f;
   float last_step_deg_ = 0.0f;
+  std::int64_t last_packet_us_ = 0;
   ScanAssemblerCounters counters_;
 };
 

@@ -24,6 +24,7 @@ struct Options {
   std::string uart;
   std::string candump;
   std::string lidar = "ld06";
+  std::string lidar_timing = "arrival";
   float angle_sign = 1.0f;
   bool odometry_only = false;
   std::string relations;
@@ -158,6 +159,7 @@ int ReplayDevice(const Options& opt) {
   dpcr::LidarStreamConfig lidar;
   lidar.kind = opt.lidar == "xv11" ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06;
   lidar.assembler.angle_map = files.angle_map;
+  lidar.timing = opt.lidar_timing == "device" ? dpcr::LidarTiming::kDeviceClock : dpcr::LidarTiming::kArrival;
   dpcr::output::RunRecord run;
   TimedMapperSink<MapperType> sink(&mapper, &run);
   dpcr::DeviceReplay replay(files, lidar, &sink);
@@ -201,6 +203,8 @@ int main(int argc, char** argv) {
   app.add_option("--uart", opt.uart, "lidar UART capture (docs/uart-capture-format.md)")->check(CLI::ExistingFile);
   app.add_option("--candump", opt.candump, "wheel-encoder CAN log (candump -l format)")->check(CLI::ExistingFile);
   app.add_option("--lidar", opt.lidar, "lidar protocol in the UART capture")->check(CLI::IsMember({"ld06", "xv11"}))->capture_default_str();
+  app.add_option("--lidar-timing", opt.lidar_timing, "LD06 packet times: arrival (the capture's stamps) or device (the packets' own clock)")
+      ->check(CLI::IsMember({"arrival", "device"}))->capture_default_str();
   app.add_option("--angle-sign", opt.angle_sign, "+1: device angles counter-clockwise (dpcr-sim), -1: clockwise (an upright LD06)")
       ->check(CLI::IsMember({1.0f, -1.0f}))->capture_default_str();
   app.add_flag("--odometry-only", opt.odometry_only, "map with dead reckoning only (for comparison)");

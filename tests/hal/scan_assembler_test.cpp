@@ -75,6 +75,28 @@ TEST_CASE("assembler records a dropped-packet gap") {
   CHECK(a->counters().gaps == 1);
 }
 
+TEST_CASE("assembler counts a silence of whole turns as a dropout and drops the turn it cuts") {
+  auto a = std::make_unique<ScanAssembler>();
+  auto scan = std::make_unique<BigScan>();
+  int ready = 0;
+  for (int rev = 0; rev < 6; ++rev) {
+    for (int k = 0; k < 90; ++k) {
+      if (rev == 2 && k >= 45) continue;       // the lidar stops mid-turn for 3 turns (0.6 s):
+      if (rev == 3 || rev == 4) continue;      // it comes back at the same angle one turn later
+      if (rev == 5 && k < 45) continue;
+      if (a->Add(XvPacket(k, rev * 200000))) {
+        ++ready;
+        a->TakeScan(scan.get());
+      }
+    }
+  }
+  CHECK_FALSE(a->Add(XvPacket(0, 6 * 200000)));  // closes the cut turn: dropped
+  CHECK(a->counters().dropouts == 1);
+  CHECK(a->counters().gaps == 0);               // angles alone see nothing missing
+  CHECK(a->counters().partial_dropped == 1);    // turn 2 + half of turn 5: never a scan
+  CHECK(ready == 2);                            // turns 0 and 1
+}
+
 TEST_CASE("assembler drops a partial first revolution") {
   auto a = std::make_unique<ScanAssembler>();
   for (int k = 45; k < 90; ++k) CHECK_FALSE(a->Add(XvPacket(k, 0)));
