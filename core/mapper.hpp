@@ -68,7 +68,10 @@ class Mapper {
   const MapperCounters& counters() const { return front_end_.counters(); }
   const FrontEndCounters& front_end_counters() const { return front_end_.front_end_counters(); }
   const MapperConfig& config() const { return front_end_.config(); }
-  const char* pipeline() const { return front_end_.registration_enabled() ? "dpcr-front-end" : "odometry"; }
+  const char* pipeline() const {
+    if (!front_end_.registration_enabled()) return "odometry";
+    return config().back_end.enable ? "dpcr" : "dpcr-front-end";
+  }
   int region_count() const { return front_end_.region_count(); }
   const BackEnd& back_end() const { return front_end_.back_end(); }
   // The anchor of regional map i (the back end moves it).

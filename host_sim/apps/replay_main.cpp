@@ -27,6 +27,7 @@ struct Options {
   std::string lidar_timing = "arrival";
   float angle_sign = 1.0f;
   bool odometry_only = false;
+  bool front_end_only = false;
   std::string relations;
   std::string out = "out/replay";
   std::string profile;  // default: building for CARMEN logs, vacuum for device files
@@ -53,6 +54,7 @@ dpcr::MapperConfig CarmenMapperConfig(const Options& opt, float log_laser_offset
   dpcr::MapperConfig config;
   config.lidar.max_range_m = opt.max_range_m;
   config.front_end.enable_registration = !opt.odometry_only;
+  config.back_end.enable = !opt.front_end_only;
   const float offset = std::isnan(opt.laser_offset_m) ? log_laser_offset_m : opt.laser_offset_m;
   config.lidar.mount = dpcr::Pose2{offset, 0.0f, 0.0f};
   return config;
@@ -167,6 +169,7 @@ int ReplayDevice(const Options& opt) {
   if (!replay.Open(opt.uart, opt.candump, &error)) throw std::runtime_error(error);
   dpcr::MapperConfig config;
   config.front_end.enable_registration = !opt.odometry_only;
+  config.back_end.enable = !opt.front_end_only;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
   const auto start = Clock::now();
   replay.Run();
@@ -208,6 +211,7 @@ int main(int argc, char** argv) {
   app.add_option("--angle-sign", opt.angle_sign, "+1: device angles counter-clockwise (dpcr-sim), -1: clockwise (an upright LD06)")
       ->check(CLI::IsMember({1.0f, -1.0f}))->capture_default_str();
   app.add_flag("--odometry-only", opt.odometry_only, "map with dead reckoning only (for comparison)");
+  app.add_flag("--front-end-only", opt.front_end_only, "map without the back end (no region graph, no loop closures; for comparison)");
   CLI11_PARSE(app, argc, argv);
   if (opt.carmen.empty() == opt.uart.empty()) {
     std::fprintf(stderr, "dpcr-replay: give either --carmen FILE or --uart FILE [--candump FILE]\n%s", app.help().c_str());

@@ -23,6 +23,7 @@ struct Options {
   std::string out;
   std::string emit_device;
   bool odometry_only = false;
+  bool front_end_only = false;
 };
 
 int Run(const Options& opt) {
@@ -38,6 +39,7 @@ int Run(const Options& opt) {
   dpcr::MapperConfig config;
   config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
   config.front_end.enable_registration = !opt.odometry_only;
+  config.back_end.enable = !opt.front_end_only;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
 
   std::unique_ptr<dpcr::DeviceEmitter> emitter;
@@ -109,6 +111,7 @@ int main(int argc, char** argv) {
   app.add_option("--out", opt.out, "output directory (default: out/<world>)");
   app.add_option("--emit-device", opt.emit_device, "also write the run as device files: DIR/lidar.uart (LD06) + DIR/wheels.log (candump)");
   app.add_flag("--odometry-only", opt.odometry_only, "map with dead reckoning only (for comparison)");
+  app.add_flag("--front-end-only", opt.front_end_only, "map without the back end (no region graph, no loop closures; for comparison)");
   CLI11_PARSE(app, argc, argv);
   if (opt.out.empty()) opt.out = "out/" + std::filesystem::path(opt.world).stem().string();
   try {
