@@ -21,6 +21,7 @@ constexpr PlicpConfig MapRegistrationConfig() {
 constexpr PlicpConfig ClosureRegistrationConfig() {
   PlicpConfig c;
   c.min_inlier_ratio = 0.3f;
+  c.max_mean_residual_m = 0.06f;
   return c;
 }
 
@@ -52,8 +53,8 @@ struct BackEndConfig {
   // The search window grows with the path since the robot last registered
   // against the re-entered map (front-end drift), up to a limit.
   float search_base_m = 0.3f;
-  float search_per_metre_m = 0.03f;
-  float search_max_m = 2.5f;
+  float search_per_metre_m = 0.04f;
+  float search_max_m = 4.0f;
   float search_base_rad = 0.05f;
   float search_per_metre_rad = 0.002f;
   float search_max_rad = 0.35f;
