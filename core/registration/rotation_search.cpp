@@ -6,8 +6,8 @@ namespace dpcr {
 namespace {
 
 constexpr int kMaxKernelRadius = 6;
-constexpr int kMaxSearchPoints = 256;
-constexpr int kMaxOffsets = 31;  // translation steps per axis (±15)
+constexpr int kMaxSearchPoints = PoseSearchScratch::kMaxPoints;
+constexpr int kMaxOffsets = PoseSearchScratch::kMaxOffsets;
 
 int FloorCell(float v) { return static_cast<int>(std::floor(v)); }
 
@@ -74,7 +74,8 @@ PoseSearchResult SearchPose(const CoarseScoreGrid& grid, Span<const Point2> poin
   int max_points = config.max_points < kMaxSearchPoints ? config.max_points : kMaxSearchPoints;
   if (max_points < 1) max_points = 1;
   const std::size_t stride = (points.size() + static_cast<std::size_t>(max_points) - 1) / static_cast<std::size_t>(max_points);
-  Point2 pts[kMaxSearchPoints];
+  PoseSearchScratch& scratch = grid.scratch();
+  Point2* pts = scratch.points;
   int n = 0;
   for (std::size_t i = 0; i < points.size() && n < kMaxSearchPoints; i += stride) pts[n++] = points[i];
 
@@ -85,8 +86,9 @@ PoseSearchResult SearchPose(const CoarseScoreGrid& grid, Span<const Point2> poin
   const int steps = config.angle_step_rad > 0.0f ? static_cast<int>(config.angle_window_rad / config.angle_step_rad + 0.5f) : 0;
   const float penalty = config.step_penalty * 255.0f * static_cast<float>(n);
   const Point2 origin = grid.origin();
-  int cx[kMaxSearchPoints], cy[kMaxSearchPoints];
-  std::uint32_t sums[kMaxOffsets * kMaxOffsets];
+  int* cx = scratch.cx;
+  int* cy = scratch.cy;
+  std::uint32_t* sums = scratch.sums;
   float best = -1.0f;
   std::uint32_t best_sum = 0, initial_sum = 0;
   for (int a = -steps; a <= steps; ++a) {

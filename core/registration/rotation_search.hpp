@@ -39,11 +39,23 @@ struct PoseSearchResult {
   int evaluations = 0;        // poses scored
 };
 
+// SearchPose's working arrays (kept with the grid, not on the stack: a Cortex-M7 task stack is
+// small, and core functions stay under 1 KiB of stack).
+struct PoseSearchScratch {
+  static constexpr int kMaxPoints = 256;
+  static constexpr int kMaxOffsets = 31;  // translation steps per axis (+-15)
+  Point2 points[kMaxPoints];
+  int cx[kMaxPoints];
+  int cy[kMaxPoints];
+  std::uint32_t sums[kMaxOffsets * kMaxOffsets];
+};
+
 // Score grid: one byte per cell, 255 on an obstacle cell, decaying with the distance to the
 // nearest one; the window follows the reference's obstacle cells (clipped to the capacity).
 class CoarseScoreGrid {
  public:
-  CoarseScoreGrid(Span<std::uint8_t> cells, int max_w, int max_h) : cells_(cells), max_w_(max_w), max_h_(max_h) {}
+  CoarseScoreGrid(Span<std::uint8_t> cells, PoseSearchScratch* scratch, int max_w, int max_h)
+      : cells_(cells), scratch_(scratch), max_w_(max_w), max_h_(max_h) {}
   CoarseScoreGrid(const CoarseScoreGrid&) = delete;
   CoarseScoreGrid& operator=(const CoarseScoreGrid&) = delete;
 
@@ -59,9 +71,12 @@ class CoarseScoreGrid {
   }
   // Row y (0 <= y < height()), width() cells.
   const std::uint8_t* Row(int y) const { return cells_.data() + static_cast<std::size_t>(y * w_); }
+  // SearchPose's scratch (single-threaded use, like the reference's nearest-obstacle cache).
+  PoseSearchScratch& scratch() const { return *scratch_; }
 
  private:
   Span<std::uint8_t> cells_;
+  PoseSearchScratch* scratch_;
   int max_w_, max_h_;
   int w_ = 0, h_ = 0;
   float res_ = 0.1f;
@@ -71,10 +86,11 @@ class CoarseScoreGrid {
 template <int kW, int kH>
 class CoarseScoreGridStorage : public CoarseScoreGrid {
  public:
-  CoarseScoreGridStorage() : CoarseScoreGrid(Span<std::uint8_t>(cells_, kW * kH), kW, kH) {}
+  CoarseScoreGridStorage() : CoarseScoreGrid(Span<std::uint8_t>(cells_, kW * kH), &scratch_, kW, kH) {}
 
  private:
   std::uint8_t cells_[kW * kH];
+  PoseSearchScratch scratch_;
 };
 
 // The best pose of `points` (target frame) on `grid` within the windows around `initial`.
