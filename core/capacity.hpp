@@ -93,7 +93,7 @@ struct TinyProfile {
   // submap, 180° turns in one scan at the lane ends) rejects 81 of its 300 first registrations;
   // a rejection now triggers a coarse pose search (every other scan of a streak) and a weak match
   // an early submap reference rebuild (every other scan at most). Measured 436 K and 155 K.
-  static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 500'000; (484 K with the search's scratch off the stack)
+  static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 500'000;  // 484 K with the search's scratch off the stack
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 40'000;  // 32 K: the hit margin gives more target cells
   static constexpr std::uint64_t kBudgetInsertionInstr = 445'000;
   static constexpr std::uint64_t kBudgetLineExtractionInstr = 170'000;
