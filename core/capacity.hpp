@@ -29,9 +29,9 @@ struct VacuumProfile {
   // if regional maps did not overlap (they do, by the margin).
   static constexpr int kTilePoolTiles = 600;
   // Regions of 4 m over a 200 m² home: ~13 needed, with room for re-mapping and odd layouts.
-  static constexpr int kMaxRegions = 40;
+  static constexpr int kMaxRegions = 30;
   // A regional map's index box in tiles per side (8 x 32 cells x 5 cm = 12.8 m: S = 4 m plus a 4.4 m margin).
-  static constexpr int kRegionBoxTiles = 6;
+  static constexpr int kRegionBoxTiles = 8;
   // Scans kept in the submap ring (the paper's N = 20 is the default, this the most).
   static constexpr int kSubmapMaxScans = 20;
   // Robot-centred submap: 256 x 256 cells = 12.8 m at 5 cm.
@@ -41,7 +41,7 @@ struct VacuumProfile {
   // Obstacle cells a registration reference holds (a 12.8 m window of walls and furniture).
   static constexpr int kReferenceCells = 4096;
   // Edges of the back end's pose graph.
-  static constexpr int kMaxGraphEdges = 256;
+  static constexpr int kMaxGraphEdges = 96;
   static constexpr std::uint64_t kBudgetPredictionInstr = 80'000;
   static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 320'000;
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 65'000;

@@ -29,10 +29,12 @@ class Mapper {
   static constexpr int kBoxTiles = Profile::kRegionBoxTiles;
   static constexpr int kRegionCells = kBoxTiles * kTileSide;
   static constexpr int kSecondTargetPoints = 600;
-  static constexpr int kBackEndCloudPoints = 600;
+  static constexpr int kBackEndCloudPoints = 400;
   static constexpr int kSearchPoints = 200;
   static constexpr int kMatchGridSide = kRegionCells / 2;
 
+  static_assert(2 * kMatchGridSide * kMatchGridSide <= 2 * kRegionCells * kRegionCells,
+                "the loop-closure search grid fits in the regional reference's table");
   Mapper() : front_end_(Storage()) {
     for (int i = 0; i < Profile::kMaxRegions; ++i) {
       region_grids_[i].Attach(&tiles_);
@@ -145,7 +147,7 @@ class Mapper {
   Correspondence correspondences_[Profile::kMaxBeams];
   // The back end: the region graph, the loop-closure search grid, a region's cloud, its job queue.
   PoseGraphStorage<Profile::kMaxRegions, Profile::kMaxGraphEdges> graph_;
-  MatchGridStorage<kMatchGridSide, kMatchGridSide> match_grid_;
+  MatchGrid match_grid_{kMatchGridSide, kMatchGridSide};  // cells lent by region_reference_
   Point2 back_end_cloud_[kBackEndCloudPoints];
   Point2 search_rotated_[kSearchPoints];
   std::int32_t back_end_jobs_[Profile::kMaxRegions + 1];

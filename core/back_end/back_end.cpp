@@ -168,6 +168,8 @@ LoopClosureResult BackEnd::TryLoopClosure(Span<RegionalMap> regions, int region,
   ++counters_.loop_searches;
   const RegionalMap& map = regions[static_cast<std::size_t>(region)];
   // 1. Where is the submap in the map? A search over the window the drift allows.
+  s_.match_grid->Attach(s_.reference->LendTable());
+  out.used_reference = true;
   s_.match_grid->Build(*map.grid, map.grid->box(), config_.match_grid_coarsen, obstacle_threshold_);
   const std::size_t stride = (cloud.size() + static_cast<std::size_t>(config_.search_points) - 1) /
                              static_cast<std::size_t>(config_.search_points);

@@ -41,6 +41,7 @@ struct BackEndCounters {
 
 struct BackEndStorage {
   PoseGraph* graph = nullptr;
+  // Its cells are borrowed from `reference` (RegistrationReference::LendTable) for each search.
   MatchGrid* match_grid = nullptr;
   // Shared with the front end's second registration: after a back-end step that used it, the
   // caller rebuilds its reference (StepResult::used_reference).

@@ -32,7 +32,7 @@ struct BackEndConfig {
   float neighbour_factor = 1.5f;
   int min_scans = 20;
   float min_match_rate = 0.3f;
-  int max_cloud_points = 600;
+  int max_cloud_points = 400;
   // Information of a registration edge: the PLICP Hessian of unit-weight residuals, divided by
   // the residual variance and by how many neighbouring points a wall's residuals share (cells of
   // one wall are not independent measurements), plus a floor so that every direction is weakly

@@ -28,6 +28,13 @@ MatchGrid::MatchGrid(Span<std::uint8_t> cells, Span<std::uint8_t> bounds, int ma
   DPCR_ASSERT(cells.size() >= static_cast<std::size_t>(max_w * max_h) && bounds.size() >= cells.size());
 }
 
+void MatchGrid::Attach(Span<std::uint8_t> bytes) {
+  const std::size_t n = static_cast<std::size_t>(max_w_ * max_h_);
+  DPCR_ASSERT(bytes.size() >= 2 * n);
+  cells_ = Span<std::uint8_t>(bytes.data(), n);
+  bounds_ = Span<std::uint8_t>(bytes.data() + n, n);
+}
+
 void MatchGrid::BuildBounds() {
   // Rows first (max over x .. x + kBlock - 1), then columns, each a short sliding window.
   for (int y = 0; y < h_; ++y) {

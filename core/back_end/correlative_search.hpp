@@ -22,6 +22,11 @@ class MatchGrid {
   // `bounds` (as large as `cells`): for each cell the largest likelihood of the kBlock x kBlock
   // cells from it up and right, the upper bound a branch-and-bound search prunes by.
   MatchGrid(Span<std::uint8_t> cells, Span<std::uint8_t> bounds, int max_w, int max_h);
+  // Storage attached later (memory lent by another stage: RegistrationReference::LendTable).
+  MatchGrid(int max_w, int max_h) : max_w_(max_w), max_h_(max_h) {}
+  // Takes 2 * max_w * max_h bytes: the cells, then the bounds.
+  void Attach(Span<std::uint8_t> bytes);
+  static std::size_t BytesFor(int max_w, int max_h) { return 2u * static_cast<std::size_t>(max_w * max_h); }
   MatchGrid(const MatchGrid&) = delete;
   MatchGrid& operator=(const MatchGrid&) = delete;
 

@@ -71,6 +71,14 @@ Status RegistrationReference::Build(const TiledGrid& grid, CellBox window, const
 }
 
 void RegistrationReference::BeginBuild(CellBox window, float resolution_m) {
+  if (table_lent_) {
+    // Lent as bytes to another stage: restore every invariant, not only what the last build wrote.
+    for (std::uint16_t& k : nearest_) k = kNotSearched;
+    for (std::uint64_t& b : obstacle_blocks_) b = 0;
+    for (std::uint64_t& row : occupied_blocks_) row = 0;
+    for (std::uint64_t& row : written_blocks_) row = 0;
+    table_lent_ = false;
+  }
   ClearWritten();  // with the last build's window size, before it changes
   window_min_ = window.min;
   w_ = window.width() < max_w_ ? window.width() : max_w_;

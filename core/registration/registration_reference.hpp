@@ -86,6 +86,15 @@ class RegistrationReference {
   // The obstacle cell occupying window-local (x, y), or kNoCell.
   std::uint16_t ObstacleAt(int x, int y) const;
 
+  // The nearest-obstacle table's memory lent out as bytes (the loop-closure search grid uses it
+  // between two builds: stages that never run at once share storage). Lending it spoils the
+  // table: the next BeginBuild clears all of it, and the caller rebuilds before any query.
+  Span<std::uint8_t> LendTable() {
+    table_lent_ = true;
+    return Span<std::uint8_t>(reinterpret_cast<std::uint8_t*>(nearest_.data()), nearest_.size() * sizeof(std::uint16_t));
+  }
+  std::size_t table_bytes() const { return nearest_.size() * sizeof(std::uint16_t); }
+
   // World position of an obstacle cell's centre.
   Point2 CellCentre(std::uint16_t i) const {
     return Point2{origin_.x + (cells_[i].x + 0.5f) * res_, origin_.y + (cells_[i].y + 0.5f) * res_};
@@ -137,6 +146,7 @@ class RegistrationReference {
   Point2 origin_;  // world position of the window's lower-left corner
   CellIndex window_min_;
   float res_ = 0.05f, inv_res_ = 20.0f;
+  bool table_lent_ = false;  // LendTable: the whole table must be cleared before the next build
 };
 
 // 256 x 256 window, 4096 cells, 512 lines: 128 KiB table + 8 KiB obstacle bits + 1 KiB of
