@@ -42,14 +42,21 @@ class Mapper {
   Mapper(const Mapper&) = delete;
   Mapper& operator=(const Mapper&) = delete;
 
-  // Validates the configuration and clears all state. Call once at start-up (and to restart).
+  // Validates the configuration (Validate: every field, every relation, this profile's
+  // capacities) and clears all state. Call once at start-up (and to restart).
   Status Init(const MapperConfig& config) {
-    if (config.front_end.submap_scans > Profile::kSubmapMaxScans) return Status::kInvalidArgument;
-    if (config.back_end.max_cloud_points > kBackEndCloudPoints || config.back_end.search_points > kSearchPoints ||
-        config.back_end.search_points > config.back_end.max_cloud_points || config.back_end.match_grid_coarsen < 2) {
-      return Status::kInvalidArgument;
-    }
-    return front_end_.Init(config);
+    const Status v = Validate(config, Limits());
+    return v != Status::kOk ? v : front_end_.Init(config);
+  }
+  // What this profile's storage holds, for Validate.
+  static ConfigLimits Limits() {
+    ConfigLimits l;
+    l.submap_max_scans = Profile::kSubmapMaxScans;
+    l.second_target_points = kSecondTargetPoints;
+    l.back_end_cloud_points = kBackEndCloudPoints;
+    l.search_points = kSearchPoints;
+    l.region_box_cells = kRegionCells;
+    return l;
   }
   void AddOdometry(const OdometrySample& sample) { front_end_.AddOdometry(sample); }
   // For sources that give increments (robot frame) instead of an absolute wheel pose.
