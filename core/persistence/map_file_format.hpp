@@ -119,6 +119,14 @@ MapFileLimits ProfileMapLimits(float resolution_m, float region_width_m, std::in
   return l;
 }
 
+// The largest file a mapper with these limits can write (every pool tile raw): a reader need not
+// read further.
+inline std::uint64_t MaxMapFileBytes(const MapFileLimits& l) {
+  return kMapHeaderBytes + std::uint64_t{l.max_regions} * (kMapRegionBytes + kMapVertexBytes) +
+         std::uint64_t{l.tile_pool_tiles} * (kMapTileHeaderBytes + kMapRawTileBytes) +
+         std::uint64_t{l.max_graph_edges} * kMapEdgeBytes + kMapTrailerBytes;
+}
+
 // The header of a map a mapper with these limits writes (counts and payload size zero).
 MapFileHeader HeaderFor(const MapFileLimits& limits, Point2 region_origin);
 
