@@ -65,8 +65,7 @@ struct MapLoad {
 inline std::string DescribeMapLoad(const char* name, const MapLoad& load) {
   if (load.io == IoStatus::kNotFound) return std::string(name) + ": no such map";
   if (load.io != IoStatus::kOk) return std::string(name) + ": cannot be read";
-  return std::string(name) + ": " + Describe(load.file.error) + " (at byte " + std::to_string(load.file.offset) +
-         "); the current map is kept";
+  return std::string(name) + ": " + Describe(load.file.error) + " (at byte " + std::to_string(load.file.offset) + ")";
 }
 
 template <class MapperType>

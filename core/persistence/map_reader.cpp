@@ -13,14 +13,14 @@ class ChunkReader {
  public:
   explicit ChunkReader(MapByteSource& source) : source_(source) {}
   // False when the data ends first.
-  bool Get(std::uint8_t* out, std::size_t size) {
-    for (std::size_t i = 0; i < size; ++i) {
-      if (head_ == size_ && !Fill()) return false;
-      out[i] = buffer_[head_++];
-    }
-    crc_.Add(out, size);
-    offset_ += size;
-    return true;
+  bool Get(std::uint8_t* out, std::size_t size) { return GetUpTo(out, size) == size; }
+  // The bytes there are, up to `size`.
+  std::size_t GetUpTo(std::uint8_t* out, std::size_t size) {
+    std::size_t n = 0;
+    while (n < size && (head_ < size_ || Fill())) out[n++] = buffer_[head_++];
+    crc_.Add(out, n);
+    offset_ += n;
+    return n;
   }
   bool Skip(std::uint64_t size) {
     while (size > 0) {
@@ -89,7 +89,14 @@ bool KeyInRange(std::int32_t k) { return k >= -kMapMaxRegionKey && k <= kMapMaxR
 
 MapFileError ReadHeader(ChunkReader& r, const MapFileLimits* limits, MapFileHeader* header) {
   std::uint8_t raw[kMapHeaderBytes];
-  if (!r.Get(raw, sizeof(raw))) return MapFileError::kTruncated;
+  const std::size_t n = r.GetUpTo(raw, sizeof(raw));
+  if (n < sizeof(raw)) {
+    // Too short for a header: a map cut short, or not a map at all.
+    for (std::size_t i = 0; i < n && i < sizeof(kMapFileMagic); ++i) {
+      if (raw[i] != kMapFileMagic[i]) return MapFileError::kBadMagic;
+    }
+    return MapFileError::kTruncated;
+  }
   const MapFileError e = DecodeMapHeader(raw, header);
   if (e != MapFileError::kNone || limits == nullptr) return e;
   return CheckMapFits(*header, *limits);
