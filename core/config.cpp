@@ -1,6 +1,7 @@
 #include "core/config.hpp"
 
 #include <climits>
+#include <cstdint>
 #include <cmath>
 
 #include "core/grid/cell.hpp"
@@ -12,7 +13,6 @@ namespace {
 bool In(float v, float lo, float hi) { return v >= lo && v <= hi; }
 bool AboveUpTo(float v, float lo, float hi) { return v > lo && v <= hi; }  // (lo, hi]
 bool In(int v, int lo, int hi) { return v >= lo && v <= hi; }
-bool In(std::int16_t v, int lo, int hi) { return v >= lo && v <= hi; }
 
 // Plausibility bounds: far past any sensible setting, well short of overflow.
 constexpr float kMaxRangeM = 200.0f;       // no 2D lidar sees farther
@@ -44,8 +44,8 @@ bool LinesOk(const LineExtractorConfig& c) {
 }
 
 // An obstacle threshold the grid can exceed (below `reachable`), and lines to find.
-bool ReferenceOk(const ReferenceConfig& r, int reachable) {
-  return In(r.obstacle_threshold, 0, reachable - 1) && AboveUpTo(r.max_distance_m, 0.0f, 10.0f) && LinesOk(r.lines);
+bool ReferenceOk(const ReferenceConfig& r, std::int64_t reachable) {
+  return r.obstacle_threshold >= 0 && r.obstacle_threshold < reachable && AboveUpTo(r.max_distance_m, 0.0f, 10.0f) && LinesOk(r.lines);
 }
 
 bool PlicpOk(const PlicpConfig& c) {
@@ -68,9 +68,12 @@ bool MissRangeOk(float range_m, const GridConfig& g) {
 
 bool FrontEndOk(const FrontEndConfig& f, const GridConfig& g) {
   // The submap holds unclamped sums of its N scans, at most one update per cell each: removal is
-  // exact only while N updates of either sign stay inside int16 (submap.hpp).
-  const bool submap = In(f.submap_scans, 1, kMaxCount) && f.submap_scans * int{g.hit_delta} < INT16_MAX &&
-                      f.submap_scans * -int{g.miss_delta} < INT16_MAX && MissRangeOk(f.submap_miss_range_m, g) &&
+  // exact only while N updates of either sign stay inside int16 (submap.hpp). 64-bit products:
+  // the check must not overflow on the values it refuses.
+  const std::int64_t most_hits = std::int64_t{f.submap_scans} * g.hit_delta;
+  const std::int64_t most_misses = -std::int64_t{f.submap_scans} * g.miss_delta;
+  const bool submap = In(f.submap_scans, 1, kMaxCount) && most_hits < INT16_MAX && most_misses < INT16_MAX &&
+                      MissRangeOk(f.submap_miss_range_m, g) &&
                       MissRangeOk(f.region_miss_range_m, g) && In(f.submap_refit_gate_m, 0.0f, 1.0f) &&
                       In(f.submap_refit_min_points, 1, kMaxCount);
   const bool periods = In(f.submap_line_period, 1, kMaxCount) && In(f.region_line_period, 1, kMaxCount) &&
@@ -86,7 +89,7 @@ bool FrontEndOk(const FrontEndConfig& f, const GridConfig& g) {
   const bool registration = In(f.prior_info_xy, 0.0f, kMaxInformation) && In(f.prior_info_theta, 0.0f, kMaxInformation) &&
                             In(f.second_registration_max_points, 1, kMaxCount) && PlicpOk(f.first_registration) &&
                             PlicpOk(f.second_registration) &&
-                            ReferenceOk(f.submap_reference, f.submap_scans * int{g.hit_delta}) &&
+                            ReferenceOk(f.submap_reference, most_hits) &&
                             ReferenceOk(f.region_reference, g.clamp_max);
   return submap && periods && regions && registration;
 }
