@@ -129,6 +129,10 @@ class Mapper {
   MapFileResult LoadMap(MapByteSource& source, const Pose2& start = Pose2::Identity()) {
     static_assert(kSecondTargetPoints >= Profile::kMaxRegions, "LoadMap borrows the target scratch for region keys");
     if (!PlausiblePose(start)) return MapFileResult{Status::kInvalidArgument, MapFileError::kBadStartPose, 0};
+    // The configuration the maps are restored under (a mapper never Init'ed has the defaults).
+    if (Validate(config(), Limits()) != Status::kOk) {
+      return MapFileResult{Status::kInvalidArgument, MapFileError::kConfigMismatch, 0};
+    }
     const MapFileLimits limits = map_file_limits();
     MapFileHeader header;
     // The second-registration target is per-scan scratch, not state: it holds the keys.

@@ -118,6 +118,21 @@ TEST_CASE("A vacuum map round-trips, written in chunks no larger than the writer
   REQUIRE(sink.bytes.size() < m->tiles_used() * dpcr::kMapRawTileBytes / 2);
 }
 
+TEST_CASE("A mapper never Init'ed loads a map under its default configuration, if the profile takes it") {
+  const TinyMap saved(200);
+  auto vacuum_map = dpcr::test::MakeMapper<dpcr::VacuumProfile>(dpcr::MapperConfig{});
+  const dpcr::test::SyntheticRun<Vacuum> run(8.0f, 200, 450);
+  dpcr::test::Feed(*vacuum_map, run);
+  const auto bytes = dpcr::test::SaveToBytes(*vacuum_map);
+  auto vacuum = std::make_unique<Vacuum>();
+  dpcr::MemoryMapSource source(dpcr::Span<const std::uint8_t>(bytes.data(), bytes.size()));
+  REQUIRE(vacuum->LoadMap(source).ok());
+  REQUIRE(dpcr::test::Fingerprint(*vacuum) == dpcr::test::Fingerprint(*vacuum_map));
+  // The defaults ask for more submap scans than the tiny profile holds: refused, not asserted.
+  auto tiny = std::make_unique<Tiny>();
+  REQUIRE(Load(*tiny, saved.bytes).error == MapFileError::kConfigMismatch);
+}
+
 TEST_CASE("An empty mapper saves a file that loads as an empty map") {
   auto m = dpcr::test::MakeMapper<dpcr::TinyProfile>();
   const auto bytes = dpcr::test::SaveToBytes(*m);
