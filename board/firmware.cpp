@@ -6,9 +6,14 @@
 #include <sys/resource.h>
 #include <vector>
 
+#include "board/map_store.hpp"
 #include "hal/map_export.hpp"
 
 namespace dpcr::board {
+
+namespace {
+constexpr const char* kMapFileName = "map.dpcr";
+}  // namespace
 
 // The device pipeline's outputs into the mapper, scans counted for the status line.
 // With a trajectory capacity, each scan's stamp, map and pose in that map are kept (storage
@@ -67,6 +72,7 @@ bool Firmware::Start() {
     std::fprintf(log_, "dpcr-firmware: error: mapper configuration rejected\n");
     return false;
   }
+  LoadSavedMap();
   sink_ = std::make_unique<MapperSink>(mapper_.get(), config_.trajectory_path.empty() ? 0 : config_.trajectory_capacity);
   DevicePipelineConfig pipeline;
   pipeline.lidar.kind = config_.lidar;
@@ -127,6 +133,19 @@ void Firmware::ServiceTimers() {
   }
 }
 
+void Firmware::LoadSavedMap() {
+  const MapLoad load = LoadMapBlob(*mapper_, *ports_.storage, kMapFileName);
+  const std::string path = config_.map_dir + "/" + kMapFileName;
+  if (load.io == IoStatus::kNotFound) {
+    std::fprintf(log_, "dpcr-firmware: no saved map at %s, starting a new one\n", path.c_str());
+  } else if (load.loaded()) {
+    std::fprintf(log_, "dpcr-firmware: map loaded from %s (%d regions, %zu bytes)\n", path.c_str(),
+                 mapper_->region_count(), load.bytes);
+  } else {
+    std::fprintf(log_, "dpcr-firmware: error: %s, mapping from scratch\n", DescribeMapLoad(path.c_str(), load).c_str());
+  }
+}
+
 void Firmware::PrintStatus(std::int64_t now_us) {
   const double period_s = static_cast<double>(config_.status_period_ms) / 1000.0;
   const DevicePipelineCounters counters = pipeline_->counters();
@@ -145,7 +164,8 @@ void Firmware::PrintStatus(std::int64_t now_us) {
   scans_at_last_status_ = sink_->scans;
 }
 
-// Renders the fused map and stores map.pgm, then map.yaml: a YAML never names an incomplete image.
+// Stores map.dpcr (the map itself, what a restart loads), then the exports: renders the fused map
+// and stores map.pgm, then map.yaml (a YAML never names an incomplete image).
 Firmware::SaveResult Firmware::SaveMap() {
   SaveResult r;
   const CellBox box = mapper_->MapBounds();
@@ -153,6 +173,10 @@ Firmware::SaveResult Firmware::SaveMap() {
   r.height = box.height();
   if (r.width <= 0 || r.height <= 0) {
     r.error = "map is empty, nothing saved";
+    return r;
+  }
+  if (!SaveMapBlob(*mapper_, *ports_.storage, kMapFileName, &r.error)) {
+    r.error = config_.map_dir + "/" + r.error;
     return r;
   }
   std::vector<std::int16_t> cells(static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height));
@@ -235,8 +259,9 @@ int Firmware::Finish(int exit_code) {
   }
   const SaveResult saved = SaveMap();
   if (saved.ok) {
-    std::fprintf(log_, "dpcr-firmware: map saved to %s/map.pgm (%dx%d), %u scans\n", config_.map_dir.c_str(),
-                 saved.width, saved.height, sink_->scans);
+    std::fprintf(log_, "dpcr-firmware: map saved to %s/%s (%zu bytes) and map.pgm (%dx%d), %u scans\n",
+                 config_.map_dir.c_str(), kMapFileName, mapper_->map_file_bytes(), saved.width, saved.height,
+                 sink_->scans);
   } else {
     std::fprintf(log_, "dpcr-firmware: error: map not saved: %s\n", saved.error.c_str());
     if (exit_code == 0) exit_code = 1;

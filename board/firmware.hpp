@@ -29,7 +29,7 @@ struct FirmwareConfig {
   std::string can_interface = "can0";
   int can_fd = -1;                         // an already-open fd carrying struct can_frame (tests)
   DiffDriveConfig wheels;
-  std::string map_dir = ".";               // writes map.pgm + map.yaml there
+  std::string map_dir = ".";               // loads map.dpcr from there; saves map.dpcr, map.pgm + map.yaml
   int autosave_s = 60;                     // 0: only on exit
   int lidar_timeout_ms = 2000;             // no packet for this long: reported, exit 2
   int status_period_ms = 1000;
@@ -46,7 +46,7 @@ struct FirmwarePorts {
   ByteSource* lidar = nullptr;
   CanSource* can = nullptr;
   const Clock* clock = nullptr;
-  BlobStore* storage = nullptr;  // receives "map.pgm" and "map.yaml"
+  BlobStore* storage = nullptr;  // holds "map.dpcr" (loaded at start), receives it and "map.pgm", "map.yaml"
 };
 
 using BoardMapper = Mapper<VacuumProfile>;
@@ -60,7 +60,10 @@ class Firmware {
   Firmware& operator=(const Firmware&) = delete;
 
   // Validates the configuration and allocates the mapper and the device pipeline: the run's
-  // only allocations besides map saves. False (logged) when the configuration is rejected.
+  // only allocations besides map loads and saves. Loads map.dpcr when the store has one (the robot
+  // starts where the saved map's first session started: its origin); a map that cannot be loaded
+  // is reported in one line and the run maps from scratch. False (logged) when the configuration
+  // is rejected.
   bool Start();
   // One read from the lidar port into the pipeline; false once the port ended or failed (logged).
   bool ServiceLidar();
@@ -82,6 +85,7 @@ class Firmware {
   class MapperSink;
   struct SaveResult;
   SaveResult SaveMap();
+  void LoadSavedMap();
   bool Store(const char* name, const std::uint8_t* data, std::size_t size, std::string* error);
   void PrintStatus(std::int64_t now_us);
   bool WriteTrajectory(std::string* error) const;

@@ -1,28 +1,146 @@
 #include "core/config.hpp"
 
+#include <climits>
+#include <cstdint>
 #include <cmath>
 
-namespace dpcr {
+#include "core/grid/cell.hpp"
 
-Status Validate(const MapperConfig& c) {
-  const bool grid_ok = c.grid.resolution_m > 0.005f && c.grid.resolution_m < 1.0f &&
-                       c.grid.hit_delta > 0 && c.grid.miss_delta < 0 && c.grid.clamp_max > 0 &&
-                       c.grid.clamp_min < 0 && c.grid.clamp_max > c.grid.hit_delta &&
-                       c.grid.clamp_min < c.grid.miss_delta && c.grid.hit_margin_m >= 0.0f;
-  const bool lidar_ok = c.lidar.min_range_m >= 0.0f && c.lidar.max_range_m > c.lidar.min_range_m &&
-                        c.lidar.no_return_free_m >= 0.0f;
-  const FrontEndConfig& f = c.front_end;
+namespace dpcr {
+namespace {
+
+// Ranges, closed unless named otherwise; false for NaN.
+bool In(float v, float lo, float hi) { return v >= lo && v <= hi; }
+bool AboveUpTo(float v, float lo, float hi) { return v > lo && v <= hi; }  // (lo, hi]
+bool In(int v, int lo, int hi) { return v >= lo && v <= hi; }
+
+// Plausibility bounds: far past any sensible setting, well short of overflow.
+constexpr float kMaxRangeM = 200.0f;       // no 2D lidar sees farther
+constexpr float kMaxMountOffsetM = 10.0f;  // the lidar sits on the robot
+constexpr float kMaxDistanceM = 100.0f;
+constexpr float kMaxSigma = 1000.0f;
+constexpr float kMinSigma = 1e-4f;  // 1 / sigma^2 stays finite
+constexpr float kMaxInformation = 1e6f;
+constexpr int kMaxCount = 1000000;  // periods, scan counts, points
+constexpr int kMaxIterations = 1000;
+
+bool GridOk(const GridConfig& g) {
+  return AboveUpTo(g.resolution_m, 0.005f, 1.0f) && g.resolution_m < 1.0f && g.hit_delta > 0 && g.miss_delta < 0 &&
+         g.clamp_max > g.hit_delta && g.clamp_min < g.miss_delta && g.clamp_min > kUnknownCell &&
+         In(g.hit_margin_m, 0.0f, 1.0f);
+}
+
+bool LidarOk(const LidarConfig& l) {
+  return In(l.min_range_m, 0.0f, kMaxRangeM) && AboveUpTo(l.max_range_m, l.min_range_m, kMaxRangeM) &&
+         In(l.no_return_free_m, 0.0f, l.max_range_m) && In(l.mount.x, -kMaxMountOffsetM, kMaxMountOffsetM) &&
+         In(l.mount.y, -kMaxMountOffsetM, kMaxMountOffsetM) && In(l.mount.theta, -2.0f * kPi, 2.0f * kPi);
+}
+
+bool LinesOk(const LineExtractorConfig& c) {
+  return In(c.link_radius_cells, 1, 8) && AboveUpTo(c.split_tolerance_cells, 0.0f, 100.0f) &&
+         In(c.min_support, 2, kMaxCount) && AboveUpTo(c.max_rms_cells, 0.0f, 100.0f) &&
+         In(c.merge_angle_rad, 0.0f, kPi / 2) && In(c.merge_offset_cells, 0.0f, 100.0f) &&
+         In(c.merge_gap_cells, 0.0f, 1000.0f);
+}
+
+// An obstacle threshold the grid can exceed (below `reachable`), and lines to find.
+bool ReferenceOk(const ReferenceConfig& r, std::int64_t reachable) {
+  return r.obstacle_threshold >= 0 && r.obstacle_threshold < reachable && AboveUpTo(r.max_distance_m, 0.0f, 10.0f) && LinesOk(r.lines);
+}
+
+bool PlicpOk(const PlicpConfig& c) {
+  const bool loop = In(c.max_iterations, 1, kMaxIterations) && AboveUpTo(c.gate_m, 0.0f, 10.0f) &&
+                    In(c.trim_floor_m, 0.0f, c.gate_m) && In(c.fine_phase_step_m, 0.0f, 10.0f) &&
+                    In(c.fine_phase_step_rad, 0.0f, kPi) && AboveUpTo(c.huber_m, 0.0f, 10.0f) &&
+                    In(c.local_line_weight, 0.0f, 1.0f) && In(c.point_weight, 0.0f, 1.0f) &&
+                    In(c.min_step_m, 0.0f, 1.0f) && In(c.min_step_rad, 0.0f, 1.0f);
+  const bool accept = In(c.min_correspondences, 3, kMaxCount) && In(c.min_inlier_ratio, 0.0f, 1.0f) &&
+                      AboveUpTo(c.max_mean_residual_m, 0.0f, 10.0f) &&
+                      In(c.min_translation_information, 0.0f, kMaxInformation) &&
+                      AboveUpTo(c.max_correction_m, 0.0f, kMaxDistanceM) && AboveUpTo(c.max_correction_rad, 0.0f, kPi);
+  return loop && accept;
+}
+
+// A miss range of 0 (whole rays), or one that reaches past the hit margin.
+bool MissRangeOk(float range_m, const GridConfig& g) {
+  return range_m == 0.0f || AboveUpTo(range_m, g.hit_margin_m, kMaxRangeM);
+}
+
+bool FrontEndOk(const FrontEndConfig& f, const GridConfig& g) {
+  // The submap holds unclamped sums of its N scans, at most one update per cell each: removal is
+  // exact only while N updates of either sign stay inside int16 (submap.hpp). 64-bit products:
+  // the check must not overflow on the values it refuses.
+  const std::int64_t most_hits = std::int64_t{f.submap_scans} * g.hit_delta;
+  const std::int64_t most_misses = -std::int64_t{f.submap_scans} * g.miss_delta;
+  const bool submap = In(f.submap_scans, 1, kMaxCount) && most_hits < INT16_MAX && most_misses < INT16_MAX &&
+                      MissRangeOk(f.submap_miss_range_m, g) &&
+                      MissRangeOk(f.region_miss_range_m, g) && In(f.submap_refit_gate_m, 0.0f, 1.0f) &&
+                      In(f.submap_refit_min_points, 1, kMaxCount);
+  const bool periods = In(f.submap_line_period, 1, kMaxCount) && In(f.region_line_period, 1, kMaxCount) &&
+                       In(f.second_registration_period, 1, kMaxCount) && In(f.region_mature_scans, 1, kMaxCount) &&
+                       In(f.lost_after_rejections, 1, kMaxCount);
   // Regions tile one cell lattice, so neighbouring regional maps are a whole number of cells apart
   // (FrontEnd::BuildRegionReference merges two of them by shifting cells).
-  const float cells_per_region = f.region_width_m / c.grid.resolution_m;
-  const bool lattice_ok = std::fabs(cells_per_region - std::round(cells_per_region)) < 1e-3f;
-  const bool front_ok = lattice_ok && f.submap_scans > 0 && f.submap_line_period > 0 && f.region_line_period > 0 &&
-                        f.second_registration_period > 0 && f.region_width_m > 0.5f &&
-                        (f.submap_miss_range_m == 0.0f || f.submap_miss_range_m > c.grid.hit_margin_m) &&
-                        (f.region_miss_range_m == 0.0f || f.region_miss_range_m > c.grid.hit_margin_m) &&
-                        f.region_hysteresis_m >= 0.0f && f.region_hysteresis_m < f.region_width_m / 2 &&
-                        f.region_mature_scans > 0 && f.submap_refit_gate_m >= 0.0f && f.submap_refit_min_points > 0 && f.reference_inner_margin_m >= 0.0f;
-  return grid_ok && lidar_ok && front_ok ? Status::kOk : Status::kInvalidArgument;
+  const float cells_per_region = f.region_width_m / g.resolution_m;
+  const bool regions = AboveUpTo(f.region_width_m, 0.5f, kMaxDistanceM) &&
+                       std::fabs(cells_per_region - std::round(cells_per_region)) < 1e-3f &&
+                       In(f.region_hysteresis_m, 0.0f, f.region_width_m / 2) && f.region_hysteresis_m < f.region_width_m / 2 &&
+                       In(f.reference_inner_margin_m, 0.0f, kMaxDistanceM);
+  const bool registration = In(f.prior_info_xy, 0.0f, kMaxInformation) && In(f.prior_info_theta, 0.0f, kMaxInformation) &&
+                            In(f.second_registration_max_points, 1, kMaxCount) && PlicpOk(f.first_registration) &&
+                            PlicpOk(f.second_registration) &&
+                            ReferenceOk(f.submap_reference, most_hits) &&
+                            ReferenceOk(f.region_reference, g.clamp_max);
+  return submap && periods && regions && registration;
 }
+
+bool SearchOk(const CorrelativeSearchConfig& c) {
+  return AboveUpTo(c.min_angle_step_rad, 0.0f, 1.0f) && In(c.max_angle_step_rad, c.min_angle_step_rad, 1.0f) &&
+         AboveUpTo(c.min_score, 0.0f, 1.0f) && AboveUpTo(c.max_second_ratio, 0.0f, 1.0f) &&
+         In(c.peak_separation_m, 0.0f, kMaxDistanceM) && In(c.peak_separation_rad, 0.0f, kPi);
+}
+
+bool OptimizerOk(const PoseGraphConfig& c) {
+  return In(c.max_iterations, 1, kMaxIterations) && In(c.min_step_m, 0.0f, 1.0f) && In(c.min_step_rad, 0.0f, 1.0f) &&
+         AboveUpTo(c.kernel_phi, 0.0f, kMaxInformation) && In(c.damping, 0.0f, 1.0f);
+}
+
+bool BackEndOk(const BackEndConfig& b) {
+  const bool matching = AboveUpTo(b.neighbour_factor, 0.0f, 10.0f) && In(b.min_scans, 1, kMaxCount) &&
+                        In(b.min_match_rate, 0.0f, 1.0f) && In(b.max_cloud_points, 1, kMaxCount) &&
+                        PlicpOk(b.registration) && PlicpOk(b.closure_registration);
+  const bool information = In(b.residual_sigma_m, kMinSigma, kMaxSigma) && In(b.correlated_points, 1.0f, kMaxInformation) &&
+                           In(b.floor_sigma_m, kMinSigma, kMaxSigma) && In(b.floor_sigma_rad, kMinSigma, kMaxSigma) &&
+                           In(b.sequence_sigma_m, kMinSigma, kMaxSigma) && In(b.sequence_sigma_rad, kMinSigma, kMaxSigma) &&
+                           AboveUpTo(b.max_edge_chi2, 0.0f, kMaxInformation) && OptimizerOk(b.optimizer);
+  const bool loops = In(b.loop_min_path_m, 0.0f, 1e6f) && In(b.loop_retry_scans, 1, kMaxCount) &&
+                     In(b.loop_retry_path_m, 0.0f, 1e6f) && In(b.search_base_m, 0.0f, kMaxDistanceM) &&
+                     In(b.search_per_metre_m, 0.0f, 1.0f) && AboveUpTo(b.search_max_m, 0.0f, kMaxDistanceM) &&
+                     In(b.search_base_rad, 0.0f, kPi) && In(b.search_per_metre_rad, 0.0f, 1.0f) &&
+                     AboveUpTo(b.search_max_rad, 0.0f, kPi) && In(b.search_points, 1, b.max_cloud_points) &&
+                     In(b.match_grid_coarsen, 2, 16) && SearchOk(b.search);
+  return matching && information && loops;
+}
+
+// What the profile's storage holds.
+bool FitsStorage(const MapperConfig& c, const ConfigLimits& l) {
+  const FrontEndConfig& f = c.front_end;
+  // A region and its hysteresis inside its map's box, the anchor at the box centre.
+  const float box_half_m = 0.5f * static_cast<float>(l.region_box_cells) * c.grid.resolution_m;
+  const bool box = l.region_box_cells <= 0 || f.region_width_m / 2 + f.region_hysteresis_m <= box_half_m;
+  return box && f.submap_scans <= l.submap_max_scans && f.second_registration_max_points <= l.second_target_points &&
+         c.back_end.max_cloud_points <= l.back_end_cloud_points && c.back_end.search_points <= l.search_points;
+}
+
+}  // namespace
+
+Status Validate(const MapperConfig& c, const ConfigLimits& limits) {
+  // The grid first: the others' checks divide by its resolution and compare with its deltas.
+  const bool ok = GridOk(c.grid) && LidarOk(c.lidar) && FrontEndOk(c.front_end, c.grid) && BackEndOk(c.back_end) &&
+                  MissRangeOk(c.front_end.region_miss_range_m, c.grid) && FitsStorage(c, limits);
+  return ok ? Status::kOk : Status::kInvalidArgument;
+}
+
+Status Validate(const MapperConfig& c) { return Validate(c, ConfigLimits{}); }
 
 }  // namespace dpcr

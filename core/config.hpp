@@ -114,7 +114,22 @@ struct MapperConfig {
   BackEndConfig back_end;
 };
 
-// kInvalidArgument when a parameter is out of its meaningful range (e.g. K2 <= 0, clamp_min >= 0).
-Status Validate(const MapperConfig& config);
+// What a profile's storage holds (Mapper<Profile>::Init passes its own; the defaults bound nothing).
+struct ConfigLimits {
+  int submap_max_scans = 1 << 30;
+  int second_target_points = 1 << 30;  // second-registration target points
+  int back_end_cloud_points = 1 << 30;
+  int search_points = 1 << 30;
+  int region_box_cells = 0;  // a regional map's box side in cells (0: unbounded)
+};
+
+// Every field of every nested configuration (grid, lidar, front end, back end, the four PLICP
+// configurations, both references and their line extraction, the search, the optimiser) within
+// its meaningful range, every relation between them (clamps beyond the deltas, the submap's
+// exact removal: N x hit_delta and N x |miss_delta| below 32767, regions on the cell lattice,
+// thresholds the grids can reach, ...), and the capacities of `limits`. kInvalidArgument
+// otherwise: 0, negative, NaN and huge values where they make no sense included.
+Status Validate(const MapperConfig& config, const ConfigLimits& limits);
+Status Validate(const MapperConfig& config);  // without storage limits
 
 }  // namespace dpcr

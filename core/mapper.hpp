@@ -13,6 +13,8 @@
 #include "core/front_end/front_end.hpp"
 #include "core/grid/map_fusion.hpp"
 #include "core/mapper_types.hpp"
+#include "core/persistence/map_reader.hpp"
+#include "core/persistence/map_writer.hpp"
 #include "core/registration/registration_reference.hpp"
 #include "core/geometry/scan.hpp"
 #include "core/front_end/submap.hpp"
@@ -44,14 +46,21 @@ class Mapper {
   Mapper(const Mapper&) = delete;
   Mapper& operator=(const Mapper&) = delete;
 
-  // Validates the configuration and clears all state. Call once at start-up (and to restart).
+  // Validates the configuration (Validate: every field, every relation, this profile's
+  // capacities) and clears all state. Call once at start-up (and to restart).
   Status Init(const MapperConfig& config) {
-    if (config.front_end.submap_scans > Profile::kSubmapMaxScans) return Status::kInvalidArgument;
-    if (config.back_end.max_cloud_points > kBackEndCloudPoints || config.back_end.search_points > kSearchPoints ||
-        config.back_end.search_points > config.back_end.max_cloud_points || config.back_end.match_grid_coarsen < 2) {
-      return Status::kInvalidArgument;
-    }
-    return front_end_.Init(config);
+    const Status v = Validate(config, Limits());
+    return v != Status::kOk ? v : front_end_.Init(config);
+  }
+  // What this profile's storage holds, for Validate.
+  static ConfigLimits Limits() {
+    ConfigLimits l;
+    l.submap_max_scans = Profile::kSubmapMaxScans;
+    l.second_target_points = kSecondTargetPoints;
+    l.back_end_cloud_points = kBackEndCloudPoints;
+    l.search_points = kSearchPoints;
+    l.region_box_cells = kRegionCells;
+    return l;
   }
   void AddOdometry(const OdometrySample& sample) { front_end_.AddOdometry(sample); }
   // For sources that give increments (robot frame) instead of an absolute wheel pose.
@@ -100,6 +109,53 @@ class Mapper {
            static_cast<std::size_t>(region_count()) * sizeof(TileId) * kBoxTiles * kBoxTiles;
   }
   std::size_t tiles_used() const { return tiles_.used(); }
+
+  // Persistence (core/persistence/, docs/map-file-format.md): the regional maps, their anchors,
+  // the region lattice and the back end's graph as one versioned file, streamed in small chunks.
+  MapFileResult SaveMap(MapByteSink& sink) const { return WriteMapFile(map_file_content(), sink); }
+  // Bytes SaveMap writes now.
+  std::size_t map_file_bytes() const { return static_cast<std::size_t>(MapFileHeaderOf(map_file_content()).file_bytes()); }
+  MapFileLimits map_file_limits() const {
+    const GridConfig& g = config().grid;
+    return ProfileMapLimits<Profile>(g.resolution_m, config().front_end.region_width_m, g.clamp_min, g.clamp_max);
+  }
+  MapFileContent map_file_content() const {
+    MapFileContent c;
+    c.limits = map_file_limits();
+    c.region_origin = front_end_.region_origin();
+    c.regions = Span<const RegionalMap>(regions_, static_cast<std::size_t>(region_count()));
+    c.graph = &graph_;
+    return c;
+  }
+  // Replaces the maps and the graph with a saved map and puts the robot at `start` in its world
+  // frame (mapping goes on there: new regions join the same graph). The file is checked whole
+  // first (map_reader.hpp) against this profile and the configuration Init took: a file refused
+  // then leaves the mapper as it was. Counters restart; the configuration stays.
+  MapFileResult LoadMap(MapByteSource& source, const Pose2& start = Pose2::Identity()) {
+    static_assert(kSecondTargetPoints >= Profile::kMaxRegions, "LoadMap borrows the target scratch for region keys");
+    if (!PlausiblePose(start)) return MapFileResult{Status::kInvalidArgument, MapFileError::kBadStartPose, 0};
+    // The configuration the maps are restored under (a mapper never Init'ed has the defaults).
+    if (Validate(config(), Limits()) != Status::kOk) {
+      return MapFileResult{Status::kInvalidArgument, MapFileError::kConfigMismatch, 0};
+    }
+    const MapFileLimits limits = map_file_limits();
+    MapFileHeader header;
+    // The second-registration target is per-scan scratch, not state: it holds the keys.
+    MapFileResult r = CheckMapFile(source, &limits, Span<Point2>(target_, kSecondTargetPoints), &header, nullptr);
+    if (!r.ok()) return r;
+    if (!source.Rewind()) return MapFileResult{Status::kInvalidArgument, MapFileError::kUnreadable, 0};
+    // From here on the mapper changes.
+    const MapperConfig config = this->config();
+    (void)front_end_.Init(config);
+    last_increment_pose_ = Pose2::Identity();
+    r = ApplyMapFile(source, header, front_end_, graph_);
+    if (!r.ok()) {
+      (void)front_end_.Init(config);
+      return r;
+    }
+    front_end_.RestoreStart(header.region_origin, start);
+    return r;
+  }
 
  private:
   FrontEndStorage Storage() {

@@ -16,6 +16,7 @@ enum class IoStatus : std::uint8_t {
   kWouldBlock,   // nothing available now
   kEndOfStream,  // file ended / peer closed
   kIoError,      // errno-level failure (the port keeps the errno)
+  kNotFound,     // no such blob (BlobStore::ReadAt)
 };
 
 struct ByteRead {
@@ -53,6 +54,15 @@ class BlobStore {
  public:
   virtual ~BlobStore() = default;
   virtual IoStatus Write(const char* name, const std::uint8_t* data, std::size_t size) = 0;
+  // Write in pieces (a map streamed chunk by chunk, no copy of it in RAM): Begin, Append...,
+  // Commit, atomic as Write. A failed step or Abort leaves the old blob; one write at a time.
+  virtual IoStatus Begin(const char* name) = 0;
+  virtual IoStatus Append(const std::uint8_t* data, std::size_t size) = 0;
+  virtual IoStatus Commit() = 0;
+  virtual void Abort() = 0;
+  // Up to `capacity` bytes of blob `name` from `offset` (size 0 at its end); kNotFound when there
+  // is no such blob.
+  virtual ByteRead ReadAt(const char* name, std::uint64_t offset, std::uint8_t* buffer, std::size_t capacity) = 0;
 };
 
 }  // namespace dpcr

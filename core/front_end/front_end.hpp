@@ -82,6 +82,16 @@ class FrontEnd {
   int last_scan_region() const { return last_scan_region_; }
   const Pose2& last_scan_in_region() const { return last_scan_in_region_; }
 
+  // Loading a saved map (core/persistence/map_reader.hpp; front_end_restore.cpp), after Init:
+  // RestoreRegion appends the regional maps in their saved order (nullptr: pool full); after the
+  // graph, RestoreStart puts the robot at `start` in the saved world frame, on the saved region
+  // lattice, in its region (a new one is chained to the nearest saved map), so that mapping goes
+  // on in the same frame and new regions join the same graph.
+  RegionalMap* RestoreRegion(RegionKey key, const Pose2& anchor, std::uint32_t scans_inserted);
+  void RestoreStart(Point2 region_origin, const Pose2& start);
+  // The world centre of region (0, 0): the region lattice a saved map keeps.
+  Point2 region_origin() const { return tracker_.Centre(RegionKey{}); }
+
  private:
   // Stages (budgeted): prediction = Predict + ProjectScan; first registration = RegisterScan;
   // second registration = RegisterSubmap; insertion = Submap::Add + RegionSet::InsertScan +

@@ -45,6 +45,21 @@ RegionSet::Entry RegionSet::Enter(RegionKey key, Point2 centre) {
   return Entry::kCreated;
 }
 
+RegionalMap* RegionSet::Restore(RegionKey key, const Pose2& anchor, std::uint32_t scans_inserted) {
+  if (static_cast<std::size_t>(size_) == maps_.size()) return nullptr;
+  RegionalMap& r = (*this)[size_++];
+  r.key = key;
+  r.anchor = anchor;
+  r.scans_inserted = scans_inserted;
+  r.path_at_last_scan_m = 0.0f;
+  // The box as Enter places it: the anchor at its centre.
+  const int half = r.grid->tiles_x() / 2;
+  r.grid->set_resolution_m(grid_.resolution_m);
+  r.grid->set_settle_at_bounds(grid_.settle_at_clamp);
+  r.grid->Reset(CellIndex{-half, -half});
+  return &r;
+}
+
 int RegionSet::SeedFromSubmap(const Submap& submap, const Pose2& submap_pose, Span<Point2> points,
                               ScanMarker& marker) {
   RegionalMap& r = (*this)[current_];

@@ -50,6 +50,10 @@ class RegionSet {
   DPCR_STAGE InsertionStats InsertScan(const Pose2& robot, Span<Point2> hits, Span<Point2> free_ends,
                                        std::uint32_t marker);
 
+  // Loading a saved map (core/persistence), after Reset: appends a map in creation order, empty,
+  // with its key, anchor and scan count (none current); nullptr when the pool is full.
+  RegionalMap* Restore(RegionKey key, const Pose2& anchor, std::uint32_t scans_inserted);
+
   int size() const { return size_; }
   // The maps made so far (the back end's vertices, in creation order).
   Span<RegionalMap> maps() const { return Span<RegionalMap>(maps_.data(), static_cast<std::size_t>(size_)); }

@@ -12,6 +12,13 @@ void RegionTracker::Start(Point2 origin, float width_m, float hysteresis_m) {
   current_ = RegionKey{};
 }
 
+void RegionTracker::Restore(Point2 region_origin, float width_m, float hysteresis_m, Point2 position) {
+  origin_ = Point2{region_origin.x - width_m / 2, region_origin.y - width_m / 2};
+  width_m_ = width_m;
+  hysteresis_m_ = hysteresis_m;
+  current_ = KeyOf(position);
+}
+
 RegionKey RegionTracker::KeyOf(Point2 p) const {
   return RegionKey{static_cast<std::int32_t>(std::floor((p.x - origin_.x) / width_m_)),
                    static_cast<std::int32_t>(std::floor((p.y - origin_.y) / width_m_))};

@@ -20,6 +20,9 @@ class RegionTracker {
  public:
   // The first position becomes the centre of region (0, 0).
   void Start(Point2 origin, float width_m, float hysteresis_m);
+  // Loading a saved map: the saved lattice (`region_origin`: the world centre of region (0, 0)),
+  // the robot at `position`; its region becomes the current one.
+  void Restore(Point2 region_origin, float width_m, float hysteresis_m, Point2 position);
   // Updates the current region; true when it changed.
   bool Update(Point2 position);
 

@@ -59,6 +59,14 @@ Tile* TiledGrid::TileForWrite(int slot) {
   return &(*pool_)[id];
 }
 
+Span<std::int16_t> TiledGrid::RestoreTile(int tx, int ty) {
+  if (pool_ == nullptr || tx < 0 || ty < 0 || tx >= tiles_x_ || ty >= tiles_y_) return Span<std::int16_t>();
+  const int slot = ty * tiles_x_ + tx;
+  if (index_[static_cast<std::size_t>(slot)] != kNoTile) return Span<std::int16_t>();
+  Tile* tile = TileForWrite(slot);
+  return tile == nullptr ? Span<std::int16_t>() : Span<std::int16_t>(tile->cells, kTileCells);
+}
+
 namespace {
 
 // Marks `offset` as updated in scan `stamp`; false if it already was.

@@ -89,6 +89,10 @@ class TiledGrid {
   // The tile at box slot (tx, ty), or kNoTile.
   TileId tile_at(int tx, int ty) const { return index_[static_cast<std::size_t>(ty * tiles_x_ + tx)]; }
   std::size_t allocated_tiles() const { return allocated_tiles_; }
+  // Loading a saved map (core/persistence): takes a tile from the pool for box slot (tx, ty) and
+  // returns its cells (all unknown) to fill; empty when the slot is outside the box or already
+  // holds a tile, or the pool is exhausted.
+  Span<std::int16_t> RestoreTile(int tx, int ty);
   const TilePool& pool() const { return *pool_; }
 
  private:

@@ -1,18 +1,21 @@
 // dpcr-replay: maps a recorded log through the core and writes map, trajectory and metrics.
 //   dpcr-replay --carmen FILE.clf [--relations FILE] [--out DIR]
 //   dpcr-replay --uart lidar.uart --candump wheels.log [--lidar ld06|xv11] [--out DIR]
+//   either with [--load-map FILE [--start-pose X,Y,THETA]] [--save-map FILE]
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <vector>
 
 #include "core/mapper.hpp"
 #include "host_sim/apps/progress.hpp"
 #include "host_sim/carmen/carmen_reader.hpp"
 #include "host_sim/carmen/laser_scan.hpp"
 #include "host_sim/drivers/device_files.hpp"
+#include "host_sim/output/map_file_io.hpp"
 #include "host_sim/output/run_report.hpp"
 
 namespace {
@@ -34,7 +37,25 @@ struct Options {
   std::string odometry = "laser";
   float max_range_m = 20.0f;
   float laser_offset_m = NAN;  // NAN: the log's PARAM robot_frontlaser_offset, else 0
+  std::string load_map;
+  std::string save_map;
+  std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
 };
+
+// --load-map after Init: a second session in the saved map's frame, at the given start pose.
+template <class MapperType>
+void LoadMapIfAsked(const Options& opt, MapperType* mapper) {
+  if (opt.load_map.empty()) return;
+  dpcr::output::LoadMapFile(*mapper, opt.load_map, dpcr::Pose2{opt.start_pose[0], opt.start_pose[1], opt.start_pose[2]});
+}
+
+// --save-map at the end of the run.
+template <class MapperType>
+void SaveMapIfAsked(const Options& opt, const MapperType& mapper) {
+  if (opt.save_map.empty()) return;
+  dpcr::output::SaveMapFile(mapper, opt.save_map);
+  std::fprintf(stderr, "dpcr-replay: map saved to %s (%zu bytes)\n", opt.save_map.c_str(), mapper.map_file_bytes());
+}
 
 void PrintSummary(const dpcr::output::RunRecord& run, const nlohmann::json& metrics, const std::string& out) {
   std::fprintf(stderr, "dpcr-replay: %zu scans in %.2f s (%.0f scans/s), mapper %s, %d regions",
@@ -84,6 +105,7 @@ long MapCarmenLog(const Options& opt, std::ifstream& in, MapperType* mapper, dpc
         if (mapper->Init(CarmenMapperConfig(opt, reader->front_laser_offset_m())) != dpcr::Status::kOk) {
           throw std::runtime_error("invalid mapper configuration");
         }
+        LoadMapIfAsked(opt, mapper);
         configured = true;
       }
       if (rec.kind == dpcr::carmen::Record::Kind::kOdom) {
@@ -133,6 +155,7 @@ int ReplayCarmen(const Options& opt) {
   metrics = dpcr::output::WriteRunOutputs(opt.out, dpcr::output::RenderFused(mapper), run, metrics);
 
   PrintSummary(run, metrics, opt.out);
+  SaveMapIfAsked(opt, mapper);
   return 0;
 }
 
@@ -171,6 +194,7 @@ int ReplayDevice(const Options& opt) {
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
+  LoadMapIfAsked(opt, &mapper);
   const auto start = Clock::now();
   replay.Run();
   if (run.estimate.empty()) throw std::runtime_error(opt.uart + ": no complete lidar revolution decoded");
@@ -185,6 +209,7 @@ int ReplayDevice(const Options& opt) {
                       {"gaps", c.lidar.gaps}, {"decimated", c.lidar.decimated}, {"odometry", c.odometry}};
   metrics = dpcr::output::WriteRunOutputs(opt.out, dpcr::output::RenderFused(mapper), run, metrics);
   PrintSummary(run, metrics, opt.out);
+  SaveMapIfAsked(opt, mapper);
   return 0;
 }
 
@@ -212,12 +237,17 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({1.0f, -1.0f}))->capture_default_str();
   app.add_flag("--odometry-only", opt.odometry_only, "map with dead reckoning only (for comparison)");
   app.add_flag("--front-end-only", opt.front_end_only, "map without the back end (no region graph, no loop closures; for comparison)");
+  app.add_option("--load-map", opt.load_map, "start from this saved map (same --profile; dpcr-map info FILE shows it)");
+  app.add_option("--start-pose", opt.start_pose, "with --load-map: the robot's start pose in the saved map's frame (x,y,theta)")
+      ->expected(3)->delimiter(',')->capture_default_str();
+  app.add_option("--save-map", opt.save_map, "save the map at the end (atomically), for --load-map and dpcr-map");
   CLI11_PARSE(app, argc, argv);
   if (opt.carmen.empty() == opt.uart.empty()) {
     std::fprintf(stderr, "dpcr-replay: give either --carmen FILE or --uart FILE [--candump FILE]\n%s", app.help().c_str());
     return 2;
   }
   try {
+    if (!opt.save_map.empty()) dpcr::output::PrepareMapFileDir(opt.save_map);
     if (!opt.uart.empty()) {
       return opt.profile == "building" ? ReplayDevice<dpcr::BuildingProfile>(opt) : ReplayDevice<dpcr::VacuumProfile>(opt);
     }

@@ -1,13 +1,16 @@
 // dpcr-sim: runs the world simulator into the mapper and writes map, trajectories and metrics.
 //   dpcr-sim --world apartment|office|hall|FILE [--minutes M] [--seed N] [--out DIR] [--emit-device DIR]
+//            [--load-map FILE [--start-pose X,Y,THETA]] [--save-map FILE]
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
 #include "core/mapper.hpp"
 #include "host_sim/apps/progress.hpp"
 #include "host_sim/drivers/device_files.hpp"
+#include "host_sim/output/map_file_io.hpp"
 #include "host_sim/output/run_report.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
@@ -24,6 +27,9 @@ struct Options {
   std::string emit_device;
   bool odometry_only = false;
   bool front_end_only = false;
+  std::string load_map;
+  std::string save_map;
+  std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
 };
 
 int Run(const Options& opt) {
@@ -41,6 +47,11 @@ int Run(const Options& opt) {
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
+  // A second session: the saved map, the robot at a known pose in its frame (the world's start
+  // pose is the saved frame's origin when the map came from a run in the same world).
+  if (!opt.load_map.empty()) {
+    dpcr::output::LoadMapFile(mapper, opt.load_map, dpcr::Pose2{opt.start_pose[0], opt.start_pose[1], opt.start_pose[2]});
+  }
 
   std::unique_ptr<dpcr::DeviceEmitter> emitter;
   if (!opt.emit_device.empty()) {
@@ -86,6 +97,7 @@ int Run(const Options& opt) {
   metrics["input"] = {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed},
                       {"slip_events", sim.slip_events()}, {"coverage_tours", sim.tours_completed()}};
   metrics = dpcr::output::WriteRunOutputs(opt.out, dpcr::output::RenderFused(mapper), run, metrics);
+  if (!opt.save_map.empty()) dpcr::output::SaveMapFile(mapper, opt.save_map);
 
   std::fprintf(stderr, "dpcr-sim: %s, %.0f min, %zu scans in %.1f s, mapper %s, %d regions, status %s",
                opt.world.c_str(), opt.minutes, run.estimate.size(), run.wall_seconds, mapper.pipeline(),
@@ -94,6 +106,8 @@ int Run(const Options& opt) {
     std::fprintf(stderr, ", LocErr_ave %.3f m, ATE %.3f m, max %.3f m", metrics["accuracy"]["loc_err_ave_m"].get<double>(),
                  metrics["accuracy"]["ate_rmse_m"].get<double>(), metrics["accuracy"]["max_err_m"].get<double>());
   }
+  if (!opt.load_map.empty()) std::fprintf(stderr, ", loaded %s", opt.load_map.c_str());
+  if (!opt.save_map.empty()) std::fprintf(stderr, ", map saved to %s (%zu bytes)", opt.save_map.c_str(), mapper.map_file_bytes());
   std::fprintf(stderr, " -> %s/\n", opt.out.c_str());
   return 0;
 }
@@ -112,9 +126,14 @@ int main(int argc, char** argv) {
   app.add_option("--emit-device", opt.emit_device, "also write the run as device files: DIR/lidar.uart (LD06) + DIR/wheels.log (candump)");
   app.add_flag("--odometry-only", opt.odometry_only, "map with dead reckoning only (for comparison)");
   app.add_flag("--front-end-only", opt.front_end_only, "map without the back end (no region graph, no loop closures; for comparison)");
+  app.add_option("--load-map", opt.load_map, "start from this saved map (a second session; dpcr-map info FILE shows it)");
+  app.add_option("--start-pose", opt.start_pose, "with --load-map: the robot's start pose in the saved map's frame (x,y,theta)")
+      ->expected(3)->delimiter(',')->capture_default_str();
+  app.add_option("--save-map", opt.save_map, "save the map at the end (atomically), for --load-map and dpcr-map");
   CLI11_PARSE(app, argc, argv);
   if (opt.out.empty()) opt.out = "out/" + std::filesystem::path(opt.world).stem().string();
   try {
+    if (!opt.save_map.empty()) dpcr::output::PrepareMapFileDir(opt.save_map);
     return Run(opt);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dpcr-sim: error: %s\n", e.what());

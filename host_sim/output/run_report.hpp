@@ -94,6 +94,7 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
   j["regions"] = mapper.region_count();
   j["static_ram_bytes"] = sizeof(MapperType);
   j["map_storage_bytes"] = mapper.map_storage_bytes();
+  j["map_file_bytes"] = mapper.map_file_bytes();  // the saved map (core/persistence)
   j["tiles_used"] = mapper.tiles_used();
   const auto& b = mapper.back_end().counters();
   j["backend"] = {{"runs", b.optimizations},

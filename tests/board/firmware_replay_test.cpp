@@ -16,18 +16,13 @@
 #include "host_sim/drivers/replay_clock.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
+#include "tests/board/memory_store.hpp"
 
 namespace {
 
 using MapperType = dpcr::Mapper<dpcr::VacuumProfile>;
 
-struct MemoryStore : dpcr::BlobStore {
-  dpcr::IoStatus Write(const char* name, const std::uint8_t* data, std::size_t size) override {
-    blobs[name].assign(data, data + size);
-    return dpcr::IoStatus::kOk;
-  }
-  std::map<std::string, std::vector<std::uint8_t>> blobs;
-};
+using dpcr::test::MemoryStore;
 
 struct CountingSink : dpcr::DeviceSink {
   explicit CountingSink(MapperType* m) : mapper(m) {}
@@ -122,4 +117,28 @@ TEST_CASE("firmware on capture-file ports and a replay clock maps as the device 
   REQUIRE(store.blobs.count("map.pgm") == 1);
   REQUIRE(store.blobs.count("map.yaml") == 1);
   CHECK(store.blobs["map.pgm"].size() > 1000);
+  REQUIRE(store.blobs.count("map.dpcr") == 1);
+  CHECK(store.blobs["map.dpcr"].size() == firmware.mapper().map_file_bytes());
+
+  // The next start loads it: the same maps, the same graph.
+  const auto restart = [&](const char* expect_in_log) {
+    std::FILE* restart_log = std::tmpfile();
+    dpcr::board::Firmware next(config, dpcr::board::FirmwarePorts{&uart, &can, &clock, &store}, restart_log);
+    REQUIRE(next.Start());
+    std::rewind(restart_log);
+    char line[512] = {};
+    std::string text;
+    while (std::fgets(line, sizeof(line), restart_log) != nullptr) text += line;
+    std::fclose(restart_log);
+    INFO(text);
+    CHECK(text.find(expect_in_log) != std::string::npos);
+    CHECK(std::count(text.begin(), text.end(), '\n') == 1);  // one line
+    return next.mapper().region_count();
+  };
+  CHECK(restart("map loaded from ./map.dpcr") == firmware.mapper().region_count());
+  // A corrupt map: one error line, the run maps from scratch.
+  store.blobs["map.dpcr"][200] ^= 0x10;
+  CHECK(restart("error: ./map.dpcr: corrupt: CRC-32 mismatch") == 0);
+  store.blobs.erase("map.dpcr");
+  CHECK(restart("no saved map at ./map.dpcr") == 0);
 }
