@@ -72,30 +72,24 @@ void MatchGrid::Build(const TiledGrid& grid, CellBox window, int coarsen, std::i
   origin_ = Point2{static_cast<float>(window.min.x) * grid.resolution_m(), static_cast<float>(window.min.y) * grid.resolution_m()};
   obstacles_ = 0;
   for (int i = 0; i < w_ * h_; ++i) cells_[static_cast<std::size_t>(i)] = kFar;
-  const CellBox box = grid.box();
-  for (int ty = 0; ty < grid.tiles_y(); ++ty) {
-    for (int tx = 0; tx < grid.tiles_x(); ++tx) {
-      const TileId id = grid.tile_at(tx, ty);
-      if (id == kNoTile) continue;
-      const std::int16_t* values = grid.pool()[id].cells;
-      for (int ly = 0; ly < kTileSide; ++ly) {
-        const int gy = box.min.y + ty * kTileSide + ly - window.min.y;
-        if (gy < 0) continue;
-        const int y = gy / coarsen;
-        if (y >= h_) break;
-        for (int lx = 0; lx < kTileSide; ++lx) {
-          if (values[ly * kTileSide + lx] <= obstacle_threshold) continue;  // kUnknownCell included
-          const int gx = box.min.x + tx * kTileSide + lx - window.min.x;
-          if (gx < 0) continue;
-          const int x = gx / coarsen;
-          if (x >= w_) break;
-          std::uint8_t& c = cells_[static_cast<std::size_t>(y * w_ + x)];
-          if (c != 0) ++obstacles_;
-          c = 0;
-        }
+  ForEachTile(grid, [&](const std::int16_t* values, CellIndex corner) {
+    for (int ly = 0; ly < kTileSide; ++ly) {
+      const int gy = corner.y + ly - window.min.y;
+      if (gy < 0) continue;
+      const int y = gy / coarsen;
+      if (y >= h_) break;
+      for (int lx = 0; lx < kTileSide; ++lx) {
+        if (values[ly * kTileSide + lx] <= obstacle_threshold) continue;  // kUnknownCell included
+        const int gx = corner.x + lx - window.min.x;
+        if (gx < 0) continue;
+        const int x = gx / coarsen;
+        if (x >= w_) break;
+        std::uint8_t& c = cells_[static_cast<std::size_t>(y * w_ + x)];
+        if (c != 0) ++obstacles_;
+        c = 0;
       }
     }
-  }
+  });
   DistanceTransform();
 }
 

@@ -6,16 +6,6 @@
 namespace dpcr {
 namespace {
 
-template <typename Visitor>
-void ForEachAllocatedTile(const TiledGrid& grid, Visitor&& visit) {
-  for (int ty = 0; ty < grid.tiles_y(); ++ty) {
-    for (int tx = 0; tx < grid.tiles_x(); ++tx) {
-      const TileId id = grid.tile_at(tx, ty);
-      if (id != kNoTile) visit(id, CellIndex{(grid.origin_tile().x + tx) * kTileSide, (grid.origin_tile().y + ty) * kTileSide});
-    }
-  }
-}
-
 // An anchor without rotation, a whole number of cells from the origin: cells map one to one.
 bool OnLattice(const Pose2& anchor, float res) {
   const float fx = anchor.x / res, fy = anchor.y / res;
@@ -25,12 +15,10 @@ bool OnLattice(const Pose2& anchor, float res) {
 // Forward mapping of cell centres: exact on the lattice.
 template <typename Add>
 void FuseOnLattice(const PlacedGrid& g, CellBox box, float res, Add&& add) {
-  const TilePool& pool = g.grid->pool();
-  ForEachAllocatedTile(*g.grid, [&](TileId id, CellIndex corner) {
-    const Tile& tile = pool[id];
+  ForEachTile(*g.grid, [&](const std::int16_t* cells, CellIndex corner) {
     for (int ly = 0; ly < kTileSide; ++ly) {
       for (int lx = 0; lx < kTileSide; ++lx) {
-        const std::int16_t v = tile.cells[ly * kTileSide + lx];
+        const std::int16_t v = cells[ly * kTileSide + lx];
         if (v == kUnknownCell) continue;
         const CellIndex local{corner.x + lx, corner.y + ly};
         const Point2 p = g.anchor.Apply(Point2{CellCentreX(local, res), CellCentreY(local, res)});
@@ -68,7 +56,7 @@ CellBox FusedBounds(Span<const PlacedGrid> grids, float res) {
   bool any = false;
   CellBox box;
   for (const PlacedGrid& g : grids) {
-    ForEachAllocatedTile(*g.grid, [&](TileId, CellIndex corner) {
+    ForEachTile(*g.grid, [&](const std::int16_t*, CellIndex corner) {
       for (int k = 0; k < 4; ++k) {
         const float lx = static_cast<float>(corner.x + ((k & 1) != 0 ? kTileSide : 0)) * res;
         const float ly = static_cast<float>(corner.y + ((k & 2) != 0 ? kTileSide : 0)) * res;

@@ -119,6 +119,30 @@ class TiledGrid {
   std::size_t allocated_tiles_ = 0;
 };
 
+// Calls visit(cells, corner) for each tile the grid holds: its kTileSide x kTileSide cells
+// (row-major) and the grid-frame index of its lower-left cell. Unobserved tiles cost nothing.
+template <typename Visitor>
+void ForEachTile(const TiledGrid& grid, Visitor&& visit) {
+  for (int ty = 0; ty < grid.tiles_y(); ++ty) {
+    for (int tx = 0; tx < grid.tiles_x(); ++tx) {
+      const TileId id = grid.tile_at(tx, ty);
+      if (id == kNoTile) continue;
+      visit(static_cast<const std::int16_t*>(grid.pool()[id].cells),
+            CellIndex{(grid.origin_tile().x + tx) * kTileSide, (grid.origin_tile().y + ty) * kTileSide});
+    }
+  }
+}
+
+// Calls visit(cell, value) for each cell above `threshold` (kUnknownCell is below any), in tile order.
+template <typename Visitor>
+void ForEachCellAbove(const TiledGrid& grid, std::int16_t threshold, Visitor&& visit) {
+  ForEachTile(grid, [&](const std::int16_t* cells, CellIndex corner) {
+    for (int i = 0; i < kTileCells; ++i) {
+      if (cells[i] > threshold) visit(CellIndex{corner.x + (i % kTileSide), corner.y + (i / kTileSide)}, cells[i]);
+    }
+  });
+}
+
 template <int kTilesX, int kTilesY>
 class TiledGridStorage : public TiledGrid {
  public:

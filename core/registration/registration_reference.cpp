@@ -163,23 +163,12 @@ void RegistrationReference::AddPlacedGrid(const TiledGrid& grid, const Pose2& gr
   // Otherwise each obstacle cell's centre is carried into the window's frame and lands in the
   // cell containing it (a rotated map's walls stay one cell thick, at most half a cell off).
   const PointTransform to_window(grid_in_window);
-  const CellBox box = grid.box();
-  for (int ty = 0; ty < grid.tiles_y(); ++ty) {
-    for (int tx = 0; tx < grid.tiles_x(); ++tx) {
-      const TileId id = grid.tile_at(tx, ty);
-      if (id == kNoTile) continue;
-      const std::int16_t* values = grid.pool()[id].cells;
-      for (int i = 0; i < kTileCells; ++i) {
-        const std::int16_t v = values[i];
-        if (v <= config.obstacle_threshold) continue;  // kUnknownCell included
-        const CellIndex local{box.min.x + tx * kTileSide + (i % kTileSide), box.min.y + ty * kTileSide + (i / kTileSide)};
-        const Point2 p = to_window(Point2{CellCentreX(local, res_), CellCentreY(local, res_)});
-        const int x = FloorToInt(p.x * inv_res_) - window_min_.x, y = FloorToInt(p.y * inv_res_) - window_min_.y;
-        if (x < 0 || y < 0 || x >= w_ || y >= h_) continue;
-        AddObstacleCell(x, y, config.weight_by_evidence ? static_cast<std::uint16_t>(1 + (v >> 6)) : 1, stats);
-      }
-    }
-  }
+  ForEachCellAbove(grid, config.obstacle_threshold, [&](CellIndex local, std::int16_t v) {
+    const Point2 p = to_window(Point2{CellCentreX(local, res_), CellCentreY(local, res_)});
+    const int x = FloorToInt(p.x * inv_res_) - window_min_.x, y = FloorToInt(p.y * inv_res_) - window_min_.y;
+    if (x < 0 || y < 0 || x >= w_ || y >= h_) return;
+    AddObstacleCell(x, y, config.weight_by_evidence ? static_cast<std::uint16_t>(1 + (v >> 6)) : 1, stats);
+  });
   stats->obstacle_cells = static_cast<int>(cell_count_);
 }
 
