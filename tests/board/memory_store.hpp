@@ -40,7 +40,7 @@ struct MemoryStore : BlobStore {
       return r;
     }
     const std::vector<std::uint8_t>& b = it->second;
-    for (std::size_t i = 0; i < capacity && offset + i < b.size(); ++i) buffer[r.size++] = b[offset + i];
+    for (std::size_t i = 0; i < capacity && offset + i < b.size(); ++i) buffer[r.size++] = b[static_cast<std::size_t>(offset + i)];
     return r;
   }
 
