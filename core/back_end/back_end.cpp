@@ -8,8 +8,6 @@
 namespace dpcr {
 namespace {
 
-float Clamp(float v, float hi) { return v < hi ? v : hi; }
-
 // Rotates an information matrix over a pose's (x, y, theta) perturbation in the `from` frame into
 // the frame of the edge error e = Z^-1 (Xi^-1 Xj) (its translation is in the measured `to` frame).
 Eigen::Matrix3f IntoErrorFrame(const Eigen::Matrix3f& information, const Pose2& measurement) {
@@ -101,9 +99,9 @@ void BackEnd::BuildReference(const RegionalMap& map) {
   (void)s_.reference->Build(*map.grid, map.grid->box(), reference, &stats);
 }
 
-Eigen::Matrix3f BackEnd::RegistrationInformation(const RegistrationResult& r, const Pose2& measurement) const {
+Eigen::Matrix3f BackEnd::RegistrationInformation(const Eigen::Matrix3f& hessian, const Pose2& measurement) const {
   const float scale = 1.0f / (config_.residual_sigma_m * config_.residual_sigma_m * config_.correlated_points);
-  Eigen::Matrix3f info = IntoErrorFrame(r.hessian * scale, measurement);
+  Eigen::Matrix3f info = IntoErrorFrame(hessian * scale, measurement);
   info(0, 0) += 1.0f / (config_.floor_sigma_m * config_.floor_sigma_m);
   info(1, 1) += 1.0f / (config_.floor_sigma_m * config_.floor_sigma_m);
   info(2, 2) += 1.0f / (config_.floor_sigma_rad * config_.floor_sigma_rad);
@@ -134,7 +132,7 @@ bool BackEnd::MatchMaps(Span<RegionalMap> regions, int older, int newer) {
   e.from = older;
   e.to = newer;
   e.measurement = r.pose;
-  e.information = RegistrationInformation(r, r.pose);
+  e.information = RegistrationInformation(r.hessian, r.pose);
   e.kind = EdgeKind::kMapMatch;
   if (s_.graph->AddOrReplaceEdge(e) != Status::kOk) {
     ++counters_.edges_dropped_full;
@@ -176,8 +174,8 @@ LoopClosureResult BackEnd::TryLoopClosure(Span<RegionalMap> regions, int region,
   std::size_t n = 0;
   for (std::size_t i = 0; i < cloud.size() && n < s_.cloud.size(); i += stride) s_.cloud[n++] = cloud[i];
   const Pose2 guess = Between(map.anchor, submap_world);
-  const float window_m = Clamp(config_.search_base_m + config_.search_per_metre_m * path_m, config_.search_max_m);
-  const float window_rad = Clamp(config_.search_base_rad + config_.search_per_metre_rad * path_m, config_.search_max_rad);
+  const float window_m = std::fmin(config_.search_base_m + config_.search_per_metre_m * path_m, config_.search_max_m);
+  const float window_rad = std::fmin(config_.search_base_rad + config_.search_per_metre_rad * path_m, config_.search_max_rad);
   const CorrelativeSearchResult found = CorrelativeSearch(*s_.match_grid, Span<const Point2>(s_.cloud.data(), n), guess,
                                                           window_m, window_rad, config_.search, s_.rotated);
   out.search_score = found.score;
@@ -192,7 +190,6 @@ LoopClosureResult BackEnd::TryLoopClosure(Span<RegionalMap> regions, int region,
   const Pose2 start = found.verdict == Status::kOk ? found.pose : guess;
   // 2. Refined by PLICP against the map's lines.
   BuildReference(map);
-  out.used_reference = true;
   const RegistrationResult r =
       RegisterImproved(*s_.reference, cloud, start, nullptr, config_.closure_registration, s_.correspondences);
   trace_.refinement = r.verdict;
@@ -229,13 +226,11 @@ bool BackEnd::AddClosure(Span<RegionalMap> regions, int region, int from, const 
   Eigen::Matrix3f j_inv = Eigen::Matrix3f::Identity();  // d S / d Z
   j_inv(0, 2) = lever.y;
   j_inv(1, 2) = -lever.x;
-  RegistrationResult carried = r;
-  carried.hessian = j_inv.transpose() * r.hessian * j_inv;
   GraphEdge e;
   e.from = region;
   e.to = from;
   e.measurement = z;
-  e.information = RegistrationInformation(carried, z);
+  e.information = RegistrationInformation(j_inv.transpose() * r.hessian * j_inv, z);
   e.kind = EdgeKind::kLoop;
   const Status added = g.AddEdgeIfConsistent(e, config_.optimizer, config_.max_edge_chi2);
   trace_.graph = added;

@@ -121,7 +121,8 @@ class BackEnd {
   bool MatchMaps(Span<RegionalMap> regions, int older, int newer);
   void Optimize(Span<RegionalMap> regions);
   void WriteAnchors(Span<RegionalMap> regions) const;
-  Eigen::Matrix3f RegistrationInformation(const RegistrationResult& r, const Pose2& measurement) const;
+  // A registration Hessian (over the measurement's parameters) as an edge's information.
+  Eigen::Matrix3f RegistrationInformation(const Eigen::Matrix3f& hessian, const Pose2& measurement) const;
   void BuildReference(const RegionalMap& map);
 
   BackEndStorage s_;

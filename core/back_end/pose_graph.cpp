@@ -77,27 +77,29 @@ Status PoseGraph::AddOrReplaceEdge(const GraphEdge& edge) {
       edge.to >= vertex_count_) {
     return Status::kInvalidArgument;
   }
-  for (int i = 0; i < edge_count_; ++i) {
-    GraphEdge& e = edges_[static_cast<std::size_t>(i)];
-    if (e.kind == edge.kind && e.from == edge.from && e.to == edge.to) {
-      e = edge;
-      return Status::kOk;
-    }
+  const int same = FindEdge(edge);
+  if (same >= 0) {
+    edges_[static_cast<std::size_t>(same)] = edge;
+    return Status::kOk;
   }
   if (static_cast<std::size_t>(edge_count_) == edges_.size()) return Status::kPoolFull;
   edges_[static_cast<std::size_t>(edge_count_++)] = edge;
   return Status::kOk;
 }
 
+int PoseGraph::FindEdge(const GraphEdge& edge) const {
+  for (int k = 0; k < edge_count_; ++k) {
+    const GraphEdge& e = edges_[static_cast<std::size_t>(k)];
+    if (e.kind == edge.kind && e.from == edge.from && e.to == edge.to) return k;
+  }
+  return -1;
+}
+
 Status PoseGraph::AddEdgeIfConsistent(const GraphEdge& edge, const PoseGraphConfig& config, float max_edge_chi2) {
   for (int i = 0; i < vertex_count_; ++i) backup_[static_cast<std::size_t>(i)] = vertices_[static_cast<std::size_t>(i)];
   for (int k = 0; k < edge_count_; ++k) chi2_[static_cast<std::size_t>(k)] = EdgeChi2(k);
   const int old_count = edge_count_;
-  int replaced = -1;
-  for (int k = 0; k < edge_count_; ++k) {
-    const GraphEdge& e = edges_[static_cast<std::size_t>(k)];
-    if (e.kind == edge.kind && e.from == edge.from && e.to == edge.to) replaced = k;
-  }
+  const int replaced = FindEdge(edge);
   const GraphEdge previous = replaced >= 0 ? edges_[static_cast<std::size_t>(replaced)] : GraphEdge{};
   const Status added = AddOrReplaceEdge(edge);
   if (added != Status::kOk) return added;

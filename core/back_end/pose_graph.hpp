@@ -93,6 +93,8 @@ class PoseGraph {
   float EdgeChi2(int i) const;
 
  private:
+  // The index of the edge of the same kind between the same vertices, -1 if none.
+  int FindEdge(const GraphEdge& edge) const;
   // Fills the normal equations at the current vertices; returns the robust cost.
   float Linearize(float phi, int* downweighted);
   // Solves normal * step = rhs in place (packed Cholesky); false if not positive definite.

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "core/base/assert.hpp"
 #include "core/grid/ray_caster.hpp"
 
 namespace dpcr {
@@ -24,7 +23,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   have_odom_ = have_scan_ = weak_match_ = false;
   search_grid_version_ = 0;
   consecutive_rejections_ = 0;
-  reference_maps_[0] = reference_maps_[1] = -1;
+  InvalidateRegionReference();
   scans_since_submap_lines_ = scans_since_second_ = second_registrations_since_region_lines_ = 0;
   scan_marker_.Reset();
   back_end_.Init(config.back_end, config.front_end.region_width_m, config.front_end.region_reference.obstacle_threshold);
@@ -327,7 +326,7 @@ void FrontEnd::EnterKnownRegion() {
   if (aligned && frame == region) {
     if (back_end_.AddClosure(regions_.maps(), region, anchor_region_, result, submap_before)) {
       submap_pose_ = regions_[region].anchor * result.pose;
-      reference_maps_[0] = reference_maps_[1] = -1;
+      InvalidateRegionReference();
     }
     anchor_region_ = region;
     lost_in_region_ = false;
@@ -337,6 +336,8 @@ void FrontEnd::EnterKnownRegion() {
   if (!lost_in_region_) anchor_region_ = region;
   scans_since_closure_try_ = 0;
 }
+
+void FrontEnd::InvalidateRegionReference() { reference_maps_[0] = reference_maps_[1] = -1; }
 
 void FrontEnd::OnRegionLeft(int left) {
   if (left >= 0 && left != regions_.current()) back_end_.OnRegionLeft(regions_.maps(), left);
@@ -361,11 +362,11 @@ bool FrontEnd::TryLoopClosure(int from) {
   const float path = path_m_ - regions_[region].path_at_last_scan_m;
   const LoopClosureResult r =
       back_end_.TryLoopClosure(regions_.maps(), region, from, Span<const Point2>(s_.target.data(), n), submap_pose_, path);
-  if (r.used_reference) reference_maps_[0] = reference_maps_[1] = -1;
+  if (r.used_reference) InvalidateRegionReference();
   if (r.verdict != Status::kOk) return false;
   // The anchors have moved (the graph took the closure); the submap belongs where it was found.
   submap_pose_ = regions_[region].anchor * r.submap_in_region;
-  reference_maps_[0] = reference_maps_[1] = -1;
+  InvalidateRegionReference();
   return true;
 }
 
@@ -373,7 +374,7 @@ void FrontEnd::StepBackEnd() {
   const int current = regions_.current();
   const Pose2 before = current >= 0 ? regions_[current].anchor : Pose2::Identity();
   const BackEnd::StepResult r = back_end_.Step(regions_.maps());
-  if (r.used_reference || r.anchors_moved) reference_maps_[0] = reference_maps_[1] = -1;
+  if (r.used_reference || r.anchors_moved) InvalidateRegionReference();
   // The robot, its submap and the current region move together with the current vertex.
   if (r.anchors_moved && current >= 0) submap_pose_ = regions_[current].anchor * before.Inverse() * submap_pose_;
 }

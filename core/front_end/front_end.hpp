@@ -115,6 +115,9 @@ class FrontEnd {
   void UpdateStatus();
   // Back end: the region just left, a loop closure on re-entry, one queued job per scan.
   void OnRegionLeft(int left);
+  // The regional reference no longer holds what reference_maps_ says (the back end used its
+  // storage or moved anchors): the next second registration rebuilds it.
+  void InvalidateRegionReference();
   void EnterKnownRegion();
   bool TryLoopClosure(int from);
   void StepBackEnd();
