@@ -371,12 +371,13 @@ bool FrontEnd::TryLoopClosure(int from) {
 }
 
 void FrontEnd::StepBackEnd() {
-  const int current = regions_.current();
-  const Pose2 before = current >= 0 ? regions_[current].anchor : Pose2::Identity();
+  // The robot's pose is known in the anchor region's frame (the current one, unless the robot
+  // could not place itself in the map it entered): it moves with that vertex.
+  const int followed = anchor_region_ >= 0 ? anchor_region_ : regions_.current();
+  const Pose2 before = followed >= 0 ? regions_[followed].anchor : Pose2::Identity();
   const BackEnd::StepResult r = back_end_.Step(regions_.maps());
   if (r.used_reference || r.anchors_moved) InvalidateRegionReference();
-  // The robot, its submap and the current region move together with the current vertex.
-  if (r.anchors_moved && current >= 0) submap_pose_ = regions_[current].anchor * before.Inverse() * submap_pose_;
+  if (r.anchors_moved && followed >= 0) submap_pose_ = regions_[followed].anchor * before.Inverse() * submap_pose_;
 }
 
 void FrontEnd::UpdateStatus() {

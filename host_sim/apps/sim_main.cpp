@@ -27,10 +27,19 @@ struct Options {
   std::string emit_device;
   bool odometry_only = false;
   bool front_end_only = false;
+  bool fixed_plan = false;
   std::string load_map;
   std::string save_map;
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
 };
+
+// What was simulated: metrics.json "input".
+nlohmann::json InputMetrics(const Options& opt, const dpcr::sim::Simulation& sim) {
+  const dpcr::sim::Pose2d& start = sim.start_pose();
+  return {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed},
+          {"plan", opt.fixed_plan ? "fixed" : "varied by the seed"}, {"start_pose_in_world", {start.x, start.y, start.theta}},
+          {"slip_events", sim.slip_events()}, {"coverage_tours", sim.tours_completed()}};
+}
 
 int Run(const Options& opt) {
   using MapperType = dpcr::Mapper<dpcr::VacuumProfile>;
@@ -40,6 +49,7 @@ int Run(const Options& opt) {
   dpcr::sim::SimConfig sim_config;
   sim_config.seed = opt.seed;
   sim_config.duration_min = opt.minutes;
+  sim_config.vary_plan = !opt.fixed_plan;
   dpcr::sim::Simulation sim(world, sim_config);
 
   dpcr::MapperConfig config;
@@ -94,8 +104,7 @@ int Run(const Options& opt) {
   std::filesystem::create_directories(opt.out);
   dpcr::output::FinalizeTrajectory(mapper, &run);
   nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
-  metrics["input"] = {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed},
-                      {"slip_events", sim.slip_events()}, {"coverage_tours", sim.tours_completed()}};
+  metrics["input"] = InputMetrics(opt, sim);
   metrics = dpcr::output::WriteRunOutputs(opt.out, dpcr::output::RenderFused(mapper), run, metrics);
   if (!opt.save_map.empty()) dpcr::output::SaveMapFile(mapper, opt.save_map);
 
@@ -121,7 +130,9 @@ int main(int argc, char** argv) {
   for (const auto& n : dpcr::sim::BuiltinWorldNames()) names += (names.empty() ? "" : "|") + n;
   app.add_option("--world", opt.world, "built-in world (" + names + ") or a world file (.txt or .pgm)")->capture_default_str();
   app.add_option("--minutes", opt.minutes, "simulated run time")->check(CLI::PositiveNumber)->capture_default_str();
-  app.add_option("--seed", opt.seed, "random seed (same seed, same run)")->capture_default_str();
+  app.add_option("--seed", opt.seed, "random seed: the noise and the cleaning plan (start pose, room order, lanes); same seed, same run")
+      ->capture_default_str();
+  app.add_flag("--fixed-plan", opt.fixed_plan, "every seed drives the world's own start pose and canonical plan (only the noise varies)");
   app.add_option("--out", opt.out, "output directory (default: out/<world>)");
   app.add_option("--emit-device", opt.emit_device, "also write the run as device files: DIR/lidar.uart (LD06) + DIR/wheels.log (candump)");
   app.add_flag("--odometry-only", opt.odometry_only, "map with dead reckoning only (for comparison)");

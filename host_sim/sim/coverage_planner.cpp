@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <queue>
+#include <random>
 
 namespace dpcr::sim {
 namespace {
@@ -154,6 +156,83 @@ std::vector<std::pair<Vec2, Vec2>> FreePieces(const FreeGrid& g, Vec2 p0, Vec2 p
   return pieces;
 }
 
+// How one room is cleaned: which room, its lane axis, the side its lanes start from and the
+// direction of its wall-following loop.
+struct RoomPass {
+  std::size_t room = 0;
+  bool flip_axis = false;  // lanes along the shorter axis
+  bool from_high = false;  // the first lane on the high side
+  bool clockwise = false;  // walls followed clockwise
+};
+
+// The rooms in planning order. Variation 0: declared order, canonical passes; otherwise a
+// shuffled order with the start room first (a vacuum cleans where it stands, then moves on).
+std::vector<RoomPass> PlanRooms(const std::vector<Room>& rooms, Vec2 start, std::uint64_t variation) {
+  std::vector<RoomPass> passes(rooms.size());
+  for (std::size_t i = 0; i < rooms.size(); ++i) passes[i].room = i;
+  if (variation == 0) return passes;
+  std::mt19937_64 rng(variation);
+  std::shuffle(passes.begin(), passes.end(), rng);
+  const auto first = std::find_if(passes.begin(), passes.end(), [&](const RoomPass& p) { return rooms[p.room].Contains(start); });
+  if (first != passes.end()) std::rotate(passes.begin(), first, first + 1);
+  std::bernoulli_distribution coin(0.5), sometimes(0.3);
+  for (RoomPass& p : passes) {
+    p.flip_axis = sometimes(rng);
+    p.from_high = coin(rng);
+    p.clockwise = coin(rng);
+  }
+  return passes;
+}
+
+// Lanes span the free (inflated) part of a room: the bounding box of its free cells, so rooms
+// drawn to the outside of thick walls (PGM plans) still get lanes along their walls.
+Room FreeExtent(const FreeGrid& g, const Room& declared) {
+  Room room{declared.name, 1e18, 1e18, -1e18, -1e18};
+  for (int j = 0; j < g.ny(); ++j) {
+    for (int i = 0; i < g.nx(); ++i) {
+      const Vec2 c = g.Centre(i, j);
+      if (!declared.Contains(c) || !g.CellFree(i, j)) continue;
+      room = Room{declared.name, std::min(room.xmin, c.x), std::min(room.ymin, c.y), std::max(room.xmax, c.x),
+                  std::max(room.ymax, c.y)};
+    }
+  }
+  return room;
+}
+
+// The free pieces a room's pass drives, in order: boustrophedon lanes, then the wall loop.
+std::vector<std::pair<Vec2, Vec2>> RoomPieces(const FreeGrid& g, const PlannerConfig& config, const Room& room,
+                                              const RoomPass& pass) {
+  std::vector<std::pair<Vec2, Vec2>> out;
+  const bool along_x = (room.xmax - room.xmin >= room.ymax - room.ymin) != pass.flip_axis;
+  const double lo = along_x ? room.ymin : room.xmin, hi = along_x ? room.ymax : room.xmax;
+  const double a0 = along_x ? room.xmin : room.ymin, a1 = along_x ? room.xmax : room.ymax;
+  if (hi < lo || a1 < a0) return out;
+  const int lanes = static_cast<int>(std::ceil((hi - lo) / config.lane_spacing_m)) + 1;
+  for (int l = 0; l < lanes; ++l) {
+    const double offset = std::min(hi - lo, l * config.lane_spacing_m);
+    const double c = pass.from_high ? hi - offset : lo + offset;
+    const Vec2 p0 = along_x ? Vec2{a0, c} : Vec2{c, a0};
+    const Vec2 p1 = along_x ? Vec2{a1, c} : Vec2{c, a1};
+    auto pieces = FreePieces(g, p0, p1, config.min_piece_m);
+    if (l % 2 == 1) {
+      std::reverse(pieces.begin(), pieces.end());
+      for (auto& pc : pieces) std::swap(pc.first, pc.second);
+    }
+    out.insert(out.end(), pieces.begin(), pieces.end());
+  }
+  if (!config.wall_following) return out;
+  const Vec2 corners[4] = {{room.xmin, room.ymin}, {room.xmax, room.ymin}, {room.xmax, room.ymax}, {room.xmin, room.ymax}};
+  for (int k = 0; k < 4; ++k) {
+    // Counter-clockwise: corner k to k + 1; clockwise: the same sides, walked backwards.
+    const int side = pass.clockwise ? 3 - k : k;
+    Vec2 from = corners[side], to = corners[(side + 1) % 4];
+    if (pass.clockwise) std::swap(from, to);
+    const auto pieces = FreePieces(g, from, to, config.min_piece_m);
+    out.insert(out.end(), pieces.begin(), pieces.end());
+  }
+  return out;
+}
+
 }  // namespace
 
 bool FindFreePoint(const WorldRayCaster& caster, const PlannerConfig& config, Vec2 near, Vec2* out) {
@@ -180,7 +259,7 @@ CoveragePlan PlanCoverage(const WorldRayCaster& caster, const PlannerConfig& con
     start = g.Centre(si, sj);
   }
   plan.waypoints.push_back(start);
-  auto visit_piece = [&](Vec2 a, Vec2 b) {
+  const auto visit_piece = [&](Vec2 a, Vec2 b) {
     std::vector<Vec2> path;
     if (!Connect(g, plan.waypoints.back(), a, &path)) {
       ++plan.skipped_pieces;
@@ -190,46 +269,8 @@ CoveragePlan PlanCoverage(const WorldRayCaster& caster, const PlannerConfig& con
     plan.waypoints.push_back(b);
     ++plan.lane_pieces;
   };
-  for (const Room& declared : caster.world().rooms) {
-    // Lanes span the free (inflated) part of the room: the bounding box of its free cells, so
-    // rooms drawn to the outside of thick walls (PGM plans) still get lanes along their walls.
-    Room room{declared.name, 1e18, 1e18, -1e18, -1e18};
-    for (int j = 0; j < g.ny(); ++j) {
-      for (int i = 0; i < g.nx(); ++i) {
-        const Vec2 c = g.Centre(i, j);
-        if (!declared.Contains(c) || !g.CellFree(i, j)) continue;
-        room = Room{declared.name, std::min(room.xmin, c.x), std::min(room.ymin, c.y), std::max(room.xmax, c.x),
-                    std::max(room.ymax, c.y)};
-      }
-    }
-    const double inset = 0.0;
-    const bool along_x = room.xmax - room.xmin >= room.ymax - room.ymin;
-    const double lo = (along_x ? room.ymin : room.xmin) + inset;
-    const double hi = (along_x ? room.ymax : room.xmax) - inset;
-    const double a0 = (along_x ? room.xmin : room.ymin) + inset;
-    const double a1 = (along_x ? room.xmax : room.ymax) - inset;
-    if (hi < lo || a1 < a0) continue;
-    const int lanes = static_cast<int>(std::ceil((hi - lo) / config.lane_spacing_m)) + 1;
-    for (int l = 0; l < lanes; ++l) {
-      const double c = std::min(hi, lo + l * config.lane_spacing_m);
-      Vec2 p0 = along_x ? Vec2{a0, c} : Vec2{c, a0};
-      Vec2 p1 = along_x ? Vec2{a1, c} : Vec2{c, a1};
-      auto pieces = FreePieces(g, p0, p1, config.min_piece_m);
-      if (l % 2 == 1) {
-        std::reverse(pieces.begin(), pieces.end());
-        for (auto& pc : pieces) std::swap(pc.first, pc.second);
-      }
-      for (const auto& pc : pieces) visit_piece(pc.first, pc.second);
-    }
-    if (config.wall_following) {
-      const Vec2 corners[4] = {{room.xmin + inset, room.ymin + inset}, {room.xmax - inset, room.ymin + inset},
-                               {room.xmax - inset, room.ymax - inset}, {room.xmin + inset, room.ymax - inset}};
-      for (int side = 0; side < 4; ++side) {
-        for (const auto& pc : FreePieces(g, corners[side], corners[(side + 1) % 4], config.min_piece_m)) {
-          visit_piece(pc.first, pc.second);
-        }
-      }
-    }
+  for (const RoomPass& pass : PlanRooms(caster.world().rooms, start, config.variation)) {
+    for (const auto& [a, b] : RoomPieces(g, config, FreeExtent(g, caster.world().rooms[pass.room]), pass)) visit_piece(a, b);
   }
   // Close the tour so the plan can restart.
   std::vector<Vec2> back;

@@ -5,8 +5,12 @@
 // every straight leg of the returned polyline keeps at least the robot radius from all obstacles,
 // so a robot that turns in place at waypoints and drives straight between them never collides.
 // Lane pieces that are blocked or unreachable from the start are skipped.
+// A plan variation (PlannerConfig::variation != 0) changes what a real vacuum's plan changes from
+// one cleaning to the next: the room order (the start room first), each room's lane axis and
+// the side its lanes start from, and the direction of its wall-following loop.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "host_sim/sim/world_ray_caster.hpp"
@@ -20,6 +24,9 @@ struct PlannerConfig {
   double grid_m = 0.05;
   double min_piece_m = 0.10;     // shorter free lane pieces are not worth the detour
   bool wall_following = true;
+  // 0: the canonical plan (rooms in declared order, lanes along each room's longer axis from its
+  // low side, walls followed counter-clockwise); otherwise the seed of a plan variation.
+  std::uint64_t variation = 0;
 };
 
 struct CoveragePlan {

@@ -7,6 +7,16 @@ namespace {
 // Separate random streams, so changing one model's settings does not reshuffle the others.
 constexpr std::uint64_t kLidarStream = 0x9E3779B97F4A7C15ull;
 constexpr std::uint64_t kOdometryStream = 0xC2B2AE3D27D4EB4Full;
+constexpr std::uint64_t kPlanStream = 0x165667B19E3779F9ull;
+
+// A start pose drawn from the seed: a random waypoint of the canonical plan (so reachable from
+// everywhere the plan goes, never inside a closed cabinet), facing anywhere.
+Pose2d RandomStart(const CoveragePlan& canonical, std::mt19937_64* rng) {
+  const std::size_t n = canonical.waypoints.size();
+  const Vec2 p = canonical.waypoints[std::uniform_int_distribution<std::size_t>(0, n - 1)(*rng)];
+  const double theta = std::uniform_real_distribution<double>(-1.0, 1.0)(*rng) * 3.14159265358979323846;
+  return Pose2d{p.x, p.y, theta};
+}
 }  // namespace
 
 Simulation::Simulation(const World& world, const SimConfig& config)
@@ -32,7 +42,17 @@ Simulation::Simulation(const World& world, const SimConfig& config)
     }
     start = Pose2d{p.x, p.y, 0.0};
   }
-  plan_ = PlanCoverage(caster_, config.planner, Vec2{start.x, start.y});
+  PlannerConfig planner = config.planner;
+  if (config.vary_plan) {
+    const CoveragePlan canonical = PlanCoverage(caster_, planner, Vec2{start.x, start.y});
+    if (!canonical.waypoints.empty()) {
+      std::mt19937_64 rng(config.seed ^ kPlanStream);
+      start = RandomStart(canonical, &rng);
+      planner.variation = rng() | 1u;  // never 0, the canonical plan
+    }
+  }
+  start_ = start;
+  plan_ = PlanCoverage(caster_, planner, Vec2{start.x, start.y});
   if (plan_.waypoints.empty()) throw WorldError(world.name + ": no free space for the robot near the start pose");
   follower_ = std::make_unique<PlanFollower>(plan_.waypoints, start.theta, config.motion);
   end_us_ = static_cast<std::int64_t>(std::llround(config.duration_min * 60e6));

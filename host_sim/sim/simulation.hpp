@@ -18,6 +18,9 @@ namespace dpcr::sim {
 
 struct SimConfig {
   std::uint64_t seed = 1;
+  // true: the seed also varies the cleaning plan (start pose, room order, lane axis and side, wall
+  // direction), as one home's cleanings differ; false: the world's start pose and canonical plan.
+  bool vary_plan = true;
   double duration_min = 35.0;
   PlannerConfig planner;
   MotionLimits motion;
@@ -56,6 +59,8 @@ class Simulation {
   bool Step(SimEvent* out);
 
   const CoveragePlan& plan() const { return plan_; }
+  // Where the robot started, in the world frame (the seed's draw, or the world's start pose).
+  const Pose2d& start_pose() const { return start_; }
   const WheelCalibration& believed_calibration() const { return odometry_.believed(); }
   int slip_events() const { return odometry_.slip_events(); }
   int tours_completed() const { return follower_->tours_completed(); }
@@ -68,6 +73,7 @@ class Simulation {
   SimConfig config_;
   World world_;  // a copy: the caster points into it, so temporaries are safe to pass
   WorldRayCaster caster_;
+  Pose2d start_;
   CoveragePlan plan_;
   std::unique_ptr<PlanFollower> follower_;
   WheelOdometryModel odometry_;

@@ -42,10 +42,13 @@ TEST_CASE("Identical rooms: loops close, none into the wrong room") {
   }
   const dpcr::eval::AccuracyResult a = dpcr::eval::EvaluateAgainstGroundTruth(estimate, truth);
   const auto& b = mapper->back_end().counters();
-  INFO("LocErr_ave " << a.loc_err_ave_m << " m, max " << a.max_err_m << " m, closures " << b.loop_closures_accepted
+  INFO("LocErr_ave " << a.loc_err_ave_m << " m, ATE " << a.ate_rmse_m << " m, max " << a.max_err_m << " m, closures " << b.loop_closures_accepted
                      << " accepted / " << b.loop_closures_rejected << " rejected, optimisations " << b.optimizations);
   CHECK(b.loop_closures_accepted >= 3);
   CHECK(b.optimizations >= 3);
-  CHECK(a.loc_err_ave_m < 0.06);
+  // A closure into the wrong room would bend the map (aligned error) and put scans metres off
+  // (maximum). The start-aligned mean of the worst tenth (LocErr_ave) is left out: with the seed's
+  // own plan it mostly measures the heading the first minutes gave the map.
+  CHECK(a.ate_rmse_m < 0.03);
   CHECK(a.max_err_m < 0.15);
 }

@@ -14,6 +14,7 @@ namespace {
 struct RunResult {
   std::vector<Pose2d> truth;  // at every odometry sample
   Pose2d last_odometry;
+  Pose2d start;  // the run's start pose in the world (the odometry frame's origin)
   double min_clearance_m = 1e9;
   double seconds = 0.0;
   long scans = 0;
@@ -24,6 +25,7 @@ RunResult Run(const World& world, const SimConfig& config) {
   const WorldRayCaster caster(world);
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim(world, config);
+  r.start = sim.start_pose();
   SimEvent ev;
   while (sim.Step(&ev)) {
     if (ev.type == SimEventType::kScan) {
@@ -40,10 +42,10 @@ RunResult Run(const World& world, const SimConfig& config) {
 }
 
 // Ground truth relative to the start pose: the odometry frame's origin.
-Pose2d RelativeToStart(const World& w, const Pose2d& p) {
-  const double c = std::cos(w.start.theta), s = std::sin(w.start.theta);
-  const double dx = p.x - w.start.x, dy = p.y - w.start.y;
-  return Pose2d{c * dx + s * dy, -s * dx + c * dy, WrapAngle(p.theta - w.start.theta)};
+Pose2d RelativeToStart(const Pose2d& start, const Pose2d& p) {
+  const double c = std::cos(start.theta), s = std::sin(start.theta);
+  const double dx = p.x - start.x, dy = p.y - start.y;
+  return Pose2d{c * dx + s * dy, -s * dx + c * dy, WrapAngle(p.theta - start.theta)};
 }
 
 // Share of the free floor inside rooms (reachable from the start, 5 cm cells) that came within
@@ -123,6 +125,40 @@ TEST_CASE("Same seed gives the same stream, another seed a different one", "[sim
   CHECK(a.size() > 300 * 450);
   CHECK(a == b);
   CHECK(a != c);
+}
+
+TEST_CASE("Seeds vary the cleaning plan; a fixed plan is the world's own", "[sim]") {
+  const World w = LoadBuiltinWorld("apartment");
+  SimConfig config;
+  config.duration_min = 0.1;
+  const auto plan = [&](std::uint64_t seed, bool vary) {
+    config.seed = seed;
+    config.vary_plan = vary;
+    const Simulation sim(w, config);
+    std::vector<double> flat;  // the waypoints' coordinates, comparable with ==
+    for (const Vec2& p : sim.plan().waypoints) flat.insert(flat.end(), {p.x, p.y});
+    return std::make_pair(sim.start_pose(), flat);
+  };
+  const auto [start_a, plan_a] = plan(1, true);
+  const auto [start_b, plan_b] = plan(2, true);
+  const auto [start_a2, plan_a2] = plan(1, true);
+  // The same seed, the same plan; another seed, another start and another route.
+  CHECK(plan_a == plan_a2);
+  CHECK(std::hypot(start_a.x - start_b.x, start_a.y - start_b.y) > 0.1);
+  CHECK(plan_a != plan_b);
+  // Fixed: every seed starts at the world's start pose and drives the canonical plan.
+  const auto [fixed_start1, fixed_plan1] = plan(1, false);
+  const auto [fixed_start2, fixed_plan2] = plan(2, false);
+  CHECK(fixed_start1.x == w.start.x);
+  CHECK(fixed_start1.theta == w.start.theta);
+  CHECK(fixed_plan1 == fixed_plan2);
+  // A varied plan still covers every room: each room holds waypoints of it.
+  for (const Room& room : w.rooms) {
+    INFO(room.name);
+    bool visited = false;
+    for (std::size_t i = 0; i + 1 < plan_b.size(); i += 2) visited = visited || room.Contains(Vec2{plan_b[i], plan_b[i + 1]});
+    CHECK(visited);
+  }
 }
 
 TEST_CASE("Events are time ordered with LD06-like scans", "[sim]") {
@@ -222,7 +258,7 @@ TEST_CASE("Odometry without errors follows ground truth, with errors it drifts",
   config.odometry.systematic_error = false;
   config.odometry.slips_per_minute = 0.0;
   RunResult exact = Run(w, config);
-  const Pose2d truth = RelativeToStart(w, exact.truth.back());
+  const Pose2d truth = RelativeToStart(exact.start, exact.truth.back());
   const double exact_error = std::hypot(truth.x - exact.last_odometry.x, truth.y - exact.last_odometry.y);
   CHECK(exact_error < 0.02);
   CHECK(std::fabs(WrapAngle(truth.theta - exact.last_odometry.theta)) < 0.005);

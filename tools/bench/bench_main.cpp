@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
   m->add_option("--world", map.world, "simulate this world instead (apartment|office|hall|FILE; vacuum profile, as dpcr-sim)");
   m->add_option("--minutes", map.minutes, "simulated run length (with --world)")->capture_default_str();
   m->add_option("--seed", map.seed, "simulation seed (with --world)")->capture_default_str();
+  m->add_flag("--fixed-plan", map.fixed_plan, "with --world: the world's own start pose and plan for every seed (only the noise varies)");
   m->add_option("--scans", map.scans, "the first N laser scans (0: all)");
   m->add_option("--max-range", map.max_range_m, "ignore returns farther than this (m)")->capture_default_str();
   m->add_option("--callgrind-stride", map.callgrind_stride,

@@ -61,6 +61,7 @@ void LoadSimulation(const MapperBenchOptions& o, Input<MapperType>* in) {
   dpcr::sim::SimConfig sim_config;
   sim_config.seed = o.seed;
   sim_config.duration_min = o.minutes;
+  sim_config.vary_plan = !o.fixed_plan;
   dpcr::sim::Simulation sim(world, sim_config);
   dpcr::sim::SimEvent event;
   while (sim.Step(&event)) {

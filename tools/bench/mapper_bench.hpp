@@ -15,6 +15,7 @@ struct MapperBenchOptions {
   std::string world;
   double minutes = 5.0;
   unsigned long long seed = 1;
+  bool fixed_plan = false;  // the world's start pose and canonical plan for every seed
   int scans = 0;  // the first N laser scans (0: all)
   float max_range_m = 20.0f;  // as dpcr-replay
   // Callgrind mode (> 0): every k-th scan's AddScan is bracketed by collection toggles and
