@@ -117,6 +117,7 @@ def main(argv, repo):
             "per_scan": cost.per_scan_instructions(ctx), "back_end": cost.back_end_instructions(ctx),
             "armhf": cost.armhf_note()})
     results["total_seconds"] = round(time.monotonic() - start, 1)
+    results["machine"]["load_average_at_end"] = [round(v, 2) for v in os.getloadavg()[:2]]
     path = os.path.join(ctx.out, "results.json")
     with open(path, "w") as f:
         json.dump(results, f, indent=1)
