@@ -25,6 +25,8 @@ def ensure(repo, build_dir, no_build):
     """Returns {name: absolute path or None}. Builds (cmake presets, -j2) unless no_build."""
     if not no_build:
         if not os.path.exists(os.path.join(build_dir, "CMakeCache.txt")):
+            if os.path.realpath(build_dir) != os.path.realpath(os.path.join(repo, "build", "host")):
+                raise SystemExit(f"bench: {build_dir} is not a configured build (configure it, or leave out --build-dir)")
             say("configuring: cmake --preset host")
             subprocess.run(["cmake", "--preset", "host"], cwd=repo, check=True, stdout=subprocess.DEVNULL)
         targets = [_target(p) for p in TARGETS.values()]

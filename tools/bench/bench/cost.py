@@ -26,6 +26,14 @@ def footprint(ctx):
     return {"command": command_text(cmd, ctx.repo), "profiles": profiles}
 
 
+# The assertions of tests/budget that hold an allocation count, and what each run is.
+_ALLOCATION_RUNS = {
+    "AllocationsDuringRun<dpcr::VacuumProfile>(600) == 0": "Mapper<vacuum>: 600 scans and their odometry after Init",
+    "AllocationsDuringRun<dpcr::TinyProfile>(300) == 0": "Mapper<tiny>: 300 scans and their odometry after Init",
+    "allocations == 0": "device pipeline (LD06 bytes, CAN wheel frames) into Mapper<vacuum>, after start-up",
+}
+
+
 def allocations(ctx):
     if not ctx.bins.get("budget_tests"):
         return {"skipped": "tests/budget/dpcr_budget_tests not built (needs the host preset with tests)"}
@@ -41,7 +49,7 @@ def allocations(ctx):
     counts = []
     for m in re.finditer(r"(?:REQUIRE|CHECK)\( (.*?) \)\s*\nwith expansion:\s*\n\s*(\d+) == 0", text):
         if "llocation" in m.group(1):
-            counts.append({"what": m.group(1), "allocations": int(m.group(2))})
+            counts.append({"what": _ALLOCATION_RUNS.get(m.group(1), m.group(1)), "allocations": int(m.group(2))})
     passed = passed and len(counts) >= 2 and "No tests ran" not in text
     return {"command": command_text(cmd, ctx.repo), "passed": passed, "counts": counts}
 

@@ -115,7 +115,20 @@ def _table1(results, ref, plot_dir, docs_dir):
     if png:
         parts += [f"![Table 1 beside the paper]({os.path.relpath(png, docs_dir)})", ""]
     parts.append(f"Paper rows: {ref['paper']['table1']['note']}")
+    parts += _checks(t1["rows"] + (results.get("table1_long") or {}).get("rows", []))
     return "\n".join(parts)
+
+
+def _checks(rows):
+    """Notes on runs whose repetitions mapped differently, or whose map size dpcr-map read otherwise."""
+    notes = []
+    for r in rows:
+        if r.get("deterministic") is False:
+            notes.append(f"- S = {r['S_m']:g}: the repetitions did not give the same regions and map size.")
+        if r.get("map_info_bytes") not in (None, r.get("map_file_bytes")):
+            notes.append(f"- S = {r['S_m']:g}: `dpcr-map info` reports {r['map_info_bytes']} bytes, the file has "
+                         f"{r['map_file_bytes']}.")
+    return ["", "Checks:"] + notes if notes else []
 
 
 def _table2(results, ref):
