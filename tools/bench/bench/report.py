@@ -43,6 +43,17 @@ def _plan_text(results):
     return text
 
 
+def _spread_text(results):
+    """How far the repetitions' wall times of this run lie apart (the noise of the timed figures)."""
+    rows = list((results.get("table1") or {}).get("rows", []))
+    rows += [(results.get("table2") or {}).get("result", {})] + list(results.get("logs") or [])
+    spreads = [r["wall_spread"] for r in rows if r.get("wall_spread") is not None]
+    if not spreads:
+        return "One repetition per run: the noise of the timings is not measured in this run."
+    return (f"Noise of the timings: the repetitions' process wall times lie up to {max(spreads) * 100:.0f} % of "
+            f"their median apart (median spread {sorted(spreads)[len(spreads) // 2] * 100:.0f} %).")
+
+
 def _header(results):
     m = results["machine"]
     return "\n".join([
@@ -61,7 +72,7 @@ def _header(results):
         f"in `{results.get('reference_file', 'tools/bench/reference_figures.json')}` (the paper's tables, "
         "published and earlier measured figures), and are not re-measured. The paper's figures come from the "
         "authors' robot in real rooms; dpcr's from the simulator's worlds of the same size on this machine, so "
-        "they compare in kind, not to the digit. Timing on a shared 2-core machine moves by ±20 % between runs.",
+        "they compare in kind, not to the digit. " + _spread_text(results),
         "",
         "Reproduce: `tools/bench/run --quick` (≤ 5 min) or `tools/bench/run` (full, ≤ 60 min); "
         "`tools/bench/run --help` lists the options (`--log FILE[:RELATIONS]` adds a CARMEN log).",

@@ -82,6 +82,8 @@ def repeated(ctx, app, args, out_dir):
     for key in _TIMED_SCAN:
         result["scan_times"][key] = median([f["scan_times"].get(key) for f in figs])
     result["repetitions"] = len(figs)
+    walls = [f["process_wall_s"] for f in figs]
+    result["wall_spread"] = (max(walls) - min(walls)) / median(walls) if len(walls) > 1 else None
     result["deterministic"] = all(f["regions"] == figs[0]["regions"] and f["map_file_bytes"] == figs[0]["map_file_bytes"]
                                   for f in figs)
     return result
