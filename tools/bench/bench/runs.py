@@ -1,4 +1,5 @@
 """Running the apps: one command, its wall time, and medians over repetitions."""
+import math
 import os
 import shlex
 import statistics
@@ -81,7 +82,7 @@ def percentile(sorted_values, q):
     """Nearest-rank percentile of an ascending list (q in 0..1)."""
     if not sorted_values:
         return None
-    k = max(0, min(len(sorted_values) - 1, int(round(q * len(sorted_values) + 0.5)) - 1))
+    k = max(0, min(len(sorted_values) - 1, math.ceil(q * len(sorted_values)) - 1))
     return sorted_values[k]
 
 
