@@ -120,6 +120,6 @@ def back_end_instructions(ctx):
 
 def armhf_note():
     return ("not measured: Debian's qemu-user runs armhf binaries but ships no instruction-counting TCG plugin "
-            "(libinsn.so; building one needs qemu's plugin header, which no Debian package installs), and wall "
+            "(libinsn.so; building one needs qemu's plugin header, which no Debian 12 package installs), and wall "
             "time under qemu-user measures the emulator, not a Cortex-A7. The x86-64 counts above are the "
             "portable proxy; the armhf build and its tests run under qemu in CI (.ci/run).")
