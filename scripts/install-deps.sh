@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# Installs what a fresh Debian 12 machine lacks to build dpcr, in three levels:
+# Installs what a fresh Debian 12 machine lacks to build dpcr, in levels:
 #   --host   build and run the host apps (scripts/demo.sh: dpcr-sim)
 #   --tests  + Catch2 and valgrind: the host test suite (scripts/test.sh, dpcr-bench)
+#   --bench  + python3 and python3-matplotlib: tools/bench/run (results.json, docs/RESULTS.md, plots)
+#   --peer   + mrpt-apps: the optional side-by-side peer of tools/bench/run (MRPT icp-slam; large,
+#            never needed by CI)
 #   --all    + cross compilers, qemu-user and the bare-metal toolchain (.ci/run; the default)
 #   --board  + qemu-system-arm and cpio for tools/emulated-board-test (not in CI yet). The
 #            emulated board's own kernel and busybox are fetched by that tool with apt-get
@@ -19,6 +22,12 @@ tests=(
   catch2                             # unit tests
   valgrind                           # instruction-count budgets (callgrind) and dpcr-bench
 )
+bench=(
+  python3 python3-matplotlib         # tools/bench/run and its plots
+)
+peer=(
+  mrpt-apps                          # tools/bench/run: MRPT icp-slam and carmen2rawlog (optional)
+)
 cross=(
   git
   g++-arm-linux-gnueabihf g++-aarch64-linux-gnu qemu-user   # cross presets + tests under emulation
@@ -30,9 +39,11 @@ board=(
 case $level in
   --host) packages=("${host[@]}") ;;
   --tests) packages=("${host[@]}" "${tests[@]}") ;;
+  --bench) packages=("${host[@]}" "${tests[@]}" "${bench[@]}") ;;
+  --peer) packages=("${host[@]}" "${tests[@]}" "${bench[@]}" "${peer[@]}") ;;
   --all) packages=("${host[@]}" "${tests[@]}" "${cross[@]}") ;;
   --board) packages=("${host[@]}" "${tests[@]}" "${cross[@]}" "${board[@]}") ;;
-  *) echo "usage: $0 [--host|--tests|--all|--board]" >&2; exit 2 ;;
+  *) echo "usage: $0 [--host|--tests|--bench|--peer|--all|--board]" >&2; exit 2 ;;
 esac
 
 missing=()

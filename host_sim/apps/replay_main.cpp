@@ -1,7 +1,7 @@
 // dpcr-replay: maps a recorded log through the core and writes map, trajectory and metrics.
 //   dpcr-replay --carmen FILE.clf [--relations FILE] [--out DIR]
 //   dpcr-replay --uart lidar.uart --candump wheels.log [--lidar ld06|xv11] [--out DIR]
-//   either with [--load-map FILE [--start-pose X,Y,THETA]] [--save-map FILE]
+//   either with [--load-map FILE [--start-pose X,Y,THETA]] [--save-map FILE] [--region-width S]
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "core/mapper.hpp"
+#include "host_sim/apps/config_error.hpp"
 #include "host_sim/apps/progress.hpp"
+#include "host_sim/apps/scan_times.hpp"
 #include "host_sim/carmen/carmen_reader.hpp"
 #include "host_sim/carmen/laser_scan.hpp"
 #include "host_sim/drivers/device_files.hpp"
@@ -40,6 +42,8 @@ struct Options {
   std::string load_map;
   std::string save_map;
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
+  float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
+  std::string scan_times;
 };
 
 // --load-map after Init: a second session in the saved map's frame, at the given start pose.
@@ -78,6 +82,7 @@ dpcr::MapperConfig CarmenMapperConfig(const Options& opt, float log_laser_offset
   config.back_end.enable = !opt.front_end_only;
   const float offset = std::isnan(opt.laser_offset_m) ? log_laser_offset_m : opt.laser_offset_m;
   config.lidar.mount = dpcr::Pose2{offset, 0.0f, 0.0f};
+  if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
   return config;
 }
 
@@ -102,9 +107,8 @@ long MapCarmenLog(const Options& opt, std::ifstream& in, MapperType* mapper, dpc
   try {
     while (reader->Next(&rec)) {
       if (!configured) {  // PARAM lines come first in CARMEN logs; the mount is fixed at the first record
-        if (mapper->Init(CarmenMapperConfig(opt, reader->front_laser_offset_m())) != dpcr::Status::kOk) {
-          throw std::runtime_error("invalid mapper configuration");
-        }
+        const dpcr::MapperConfig config = CarmenMapperConfig(opt, reader->front_laser_offset_m());
+        if (mapper->Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));
         LoadMapIfAsked(opt, mapper);
         configured = true;
       }
@@ -156,6 +160,7 @@ int ReplayCarmen(const Options& opt) {
 
   PrintSummary(run, metrics, opt.out);
   SaveMapIfAsked(opt, mapper);
+  dpcr::apps::WriteScanTimes(opt.scan_times, run);
   return 0;
 }
 
@@ -193,7 +198,8 @@ int ReplayDevice(const Options& opt) {
   dpcr::MapperConfig config;
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
-  if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
+  if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
+  if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));
   LoadMapIfAsked(opt, &mapper);
   const auto start = Clock::now();
   replay.Run();
@@ -210,6 +216,7 @@ int ReplayDevice(const Options& opt) {
   metrics = dpcr::output::WriteRunOutputs(opt.out, dpcr::output::RenderFused(mapper), run, metrics);
   PrintSummary(run, metrics, opt.out);
   SaveMapIfAsked(opt, mapper);
+  dpcr::apps::WriteScanTimes(opt.scan_times, run);
   return 0;
 }
 
@@ -241,6 +248,9 @@ int main(int argc, char** argv) {
   app.add_option("--start-pose", opt.start_pose, "with --load-map: the robot's start pose in the saved map's frame (x,y,theta)")
       ->expected(3)->delimiter(',')->capture_default_str();
   app.add_option("--save-map", opt.save_map, "save the map at the end (atomically), for --load-map and dpcr-map");
+  app.add_option("--region-width", opt.region_width_m, "region width S in metres (default: the configuration's, 4 m)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");
   CLI11_PARSE(app, argc, argv);
   if (opt.carmen.empty() == opt.uart.empty()) {
     std::fprintf(stderr, "dpcr-replay: give either --carmen FILE or --uart FILE [--candump FILE]\n%s", app.help().c_str());

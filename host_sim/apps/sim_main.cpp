@@ -1,6 +1,6 @@
 // dpcr-sim: runs the world simulator into the mapper and writes map, trajectories and metrics.
 //   dpcr-sim --world apartment|office|hall|FILE [--minutes M] [--seed N] [--out DIR] [--emit-device DIR]
-//            [--load-map FILE [--start-pose X,Y,THETA]] [--save-map FILE]
+//            [--load-map FILE [--start-pose X,Y,THETA]] [--save-map FILE] [--region-width S]
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "core/mapper.hpp"
+#include "host_sim/apps/config_error.hpp"
 #include "host_sim/apps/progress.hpp"
+#include "host_sim/apps/scan_times.hpp"
 #include "host_sim/drivers/device_files.hpp"
 #include "host_sim/output/map_file_io.hpp"
 #include "host_sim/output/run_report.hpp"
@@ -31,6 +33,8 @@ struct Options {
   std::string load_map;
   std::string save_map;
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
+  float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
+  std::string scan_times;
 };
 
 // What was simulated: metrics.json "input".
@@ -56,7 +60,8 @@ int Run(const Options& opt) {
   config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
-  if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error("invalid mapper configuration");
+  if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
+  if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));
   // A second session: the saved map, the robot at a known pose in its frame (the world's start
   // pose is the saved frame's origin when the map came from a run in the same world).
   if (!opt.load_map.empty()) {
@@ -107,6 +112,7 @@ int Run(const Options& opt) {
   metrics["input"] = InputMetrics(opt, sim);
   metrics = dpcr::output::WriteRunOutputs(opt.out, dpcr::output::RenderFused(mapper), run, metrics);
   if (!opt.save_map.empty()) dpcr::output::SaveMapFile(mapper, opt.save_map);
+  dpcr::apps::WriteScanTimes(opt.scan_times, run);
 
   std::fprintf(stderr, "dpcr-sim: %s, %.0f min, %zu scans in %.1f s, mapper %s, %d regions, status %s",
                opt.world.c_str(), opt.minutes, run.estimate.size(), run.wall_seconds, mapper.pipeline(),
@@ -141,6 +147,9 @@ int main(int argc, char** argv) {
   app.add_option("--start-pose", opt.start_pose, "with --load-map: the robot's start pose in the saved map's frame (x,y,theta)")
       ->expected(3)->delimiter(',')->capture_default_str();
   app.add_option("--save-map", opt.save_map, "save the map at the end (atomically), for --load-map and dpcr-map");
+  app.add_option("--region-width", opt.region_width_m, "region width S in metres (default: the configuration's, 4 m)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");
   CLI11_PARSE(app, argc, argv);
   if (opt.out.empty()) opt.out = "out/" + std::filesystem::path(opt.world).stem().string();
   try {

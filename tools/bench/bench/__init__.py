@@ -1,0 +1,1 @@
+"""tools/bench/run: the benchmark runner (scenarios -> out/bench/results.json -> docs/RESULTS.md)."""
