@@ -35,7 +35,7 @@ class Mapper {
   static constexpr int kSearchPoints = 200;
   static constexpr int kMatchGridSide = kRegionCells / 2;
 
-  static_assert(2 * kMatchGridSide * kMatchGridSide <= 2 * kRegionCells * kRegionCells,
+  static_assert(MatchGrid::BytesFor(kMatchGridSide, kMatchGridSide) <= 2u * kRegionCells * kRegionCells,
                 "the loop-closure search grid fits in the regional reference's table");
   Mapper() : front_end_(Storage()) {
     for (int i = 0; i < Profile::kMaxRegions; ++i) {

@@ -23,38 +23,42 @@ std::uint8_t LikelihoodOf(int d) {
 
 }  // namespace
 
-MatchGrid::MatchGrid(Span<std::uint8_t> cells, Span<std::uint8_t> bounds, int max_w, int max_h)
-    : cells_(cells), bounds_(bounds), max_w_(max_w), max_h_(max_h) {
-  DPCR_ASSERT(cells.size() >= static_cast<std::size_t>(max_w * max_h) && bounds.size() >= cells.size());
+MatchGrid::MatchGrid(Span<std::uint8_t> cells, Span<std::uint8_t> bounds, Span<std::uint8_t> coarse_bounds, int max_w,
+                     int max_h)
+    : cells_(cells), bounds_(bounds), coarse_bounds_(coarse_bounds), max_w_(max_w), max_h_(max_h) {
+  DPCR_ASSERT(cells.size() >= static_cast<std::size_t>(max_w * max_h) && bounds.size() >= cells.size() &&
+              coarse_bounds.size() >= cells.size());
 }
 
 void MatchGrid::Attach(Span<std::uint8_t> bytes) {
   const std::size_t n = static_cast<std::size_t>(max_w_ * max_h_);
-  DPCR_ASSERT(bytes.size() >= 2 * n);
+  DPCR_ASSERT(bytes.size() >= 3 * n);
   cells_ = Span<std::uint8_t>(bytes.data(), n);
   bounds_ = Span<std::uint8_t>(bytes.data() + n, n);
+  coarse_bounds_ = Span<std::uint8_t>(bytes.data() + 2 * n, n);
 }
 
-void MatchGrid::BuildBounds() {
-  // Rows first (max over x .. x + kBlock - 1), then columns, each a short sliding window.
+void MatchGrid::MaxOfFour(Span<const std::uint8_t> in, Span<std::uint8_t> out, int step) {
+  // Rows first (into out), then columns in place: a cell's column reads only rows at or above it
+  // before they are written, walking up from the bottom row.
   for (int y = 0; y < h_; ++y) {
     for (int x = 0; x < w_; ++x) {
       std::uint8_t m = 0;
-      for (int k = 0; k < kBlock && x + k < w_; ++k) {
-        const std::uint8_t v = cells_[static_cast<std::size_t>(y * w_ + x + k)];
+      for (int k = 0; k < 4 && x + k * step < w_; ++k) {
+        const std::uint8_t v = in[static_cast<std::size_t>(y * w_ + x + k * step)];
         m = v > m ? v : m;
       }
-      bounds_[static_cast<std::size_t>(y * w_ + x)] = m;
+      out[static_cast<std::size_t>(y * w_ + x)] = m;
     }
   }
   for (int x = 0; x < w_; ++x) {
     for (int y = 0; y < h_; ++y) {
       std::uint8_t m = 0;
-      for (int k = 0; k < kBlock && y + k < h_; ++k) {
-        const std::uint8_t v = bounds_[static_cast<std::size_t>((y + k) * w_ + x)];
+      for (int k = 0; k < 4 && y + k * step < h_; ++k) {
+        const std::uint8_t v = out[static_cast<std::size_t>((y + k * step) * w_ + x)];
         m = v > m ? v : m;
       }
-      bounds_[static_cast<std::size_t>(y * w_ + x)] = m;  // rows below y are read before written
+      out[static_cast<std::size_t>(y * w_ + x)] = m;  // rows below y are read before written
     }
   }
 }
@@ -120,7 +124,9 @@ void MatchGrid::DistanceTransform() {
   std::uint8_t lut[256];
   for (int d = 0; d < 256; ++d) lut[d] = LikelihoodOf(d);
   for (int i = 0; i < w_ * h_; ++i) cells_[static_cast<std::size_t>(i)] = lut[cells_[static_cast<std::size_t>(i)]];
-  BuildBounds();
+  static_assert(kBlock == 4 && kCoarseBlock == 4 * kBlock, "each bound level is the max of 4 x 4 of the one below");
+  MaxOfFour(Span<const std::uint8_t>(cells_.data(), cells_.size()), bounds_, 1);
+  MaxOfFour(Span<const std::uint8_t>(bounds_.data(), bounds_.size()), coarse_bounds_, kBlock);
 }
 
 std::uint8_t MatchGrid::At(Point2 p) const {
@@ -141,49 +147,155 @@ bool Excluded(const Peak* exclude, bool angle_far, int ox, int oy, int sep_cells
   return exclude != nullptr && !angle_far && std::abs(ox - exclude->ox) < sep_cells && std::abs(oy - exclude->oy) < sep_cells;
 }
 
-// One sweep over the window. With `exclude` set, poses within the separation of it are skipped
-// (the search for a second, separate peak).
-Peak Sweep(const MatchGrid& grid, Span<const Point2> points, Pose2 initial, int n_offsets, int n_angles, float step,
-           const Peak* exclude, const CorrelativeSearchConfig& config, Span<Point2> rotated,
-           std::uint32_t* evaluated) {
+// The poses that scored within max_second_ratio of the best so far: the only ones that can be the
+// separate peak that makes a search ambiguous. Bounded; when it overflows (a long ridge of near-
+// best poses, e.g. a corridor) the search takes a second sweep instead.
+class NearBest {
+ public:
+  void Add(const Peak& p, float floor) {
+    if (size_ == kCapacity) Drop(floor);
+    if (size_ == kCapacity) {
+      overflow_ = true;
+      return;
+    }
+    peaks_[size_++] = p;
+  }
+  bool overflow() const { return overflow_; }
+  // The best score among the poses separated from `best` (the second sweep's rule), -1 if none.
+  float BestSeparated(const Peak& best, float separation_rad, int sep_cells) const {
+    float out = -1.0f;
+    for (int i = 0; i < size_; ++i) {
+      const Peak& p = peaks_[i];
+      const bool angle_far = std::fabs(p.dtheta - best.dtheta) >= separation_rad;
+      if (!Excluded(&best, angle_far, p.ox, p.oy, sep_cells) && p.score > out) out = p.score;
+    }
+    return out;
+  }
+
+ private:
+  void Drop(float floor) {
+    int kept = 0;
+    for (int i = 0; i < size_; ++i) {
+      if (peaks_[i].score >= floor) peaks_[kept++] = peaks_[i];
+    }
+    size_ = kept;
+  }
+  static constexpr int kCapacity = 24;
+  Peak peaks_[kCapacity];
+  int size_ = 0;
+  bool overflow_ = false;
+};
+
+struct SweepPlan {
+  Pose2 initial;
+  int n_offsets = 0, n_angles = 0;
+  float step = 0.0f;
+};
+
+// Angles from the guess outwards (0, +1, -1, +2, ...): a good pose found early prunes the rest.
+int AngleAt(int k) { return (k % 2 == 1) ? (k + 1) / 2 : -(k / 2); }
+
+// The sums over the cloud (offset by whole match cells) of a grid's likelihoods and of its bounds.
+struct CloudScorer {
+  const MatchGrid& grid;
+  Span<const Point2> cells;  // the rotated cloud in match cells
+  std::uint32_t Score(int ox, int oy) const {
+    std::uint32_t sum = 0;
+    for (const Point2& c : cells) sum += grid.AtCell(static_cast<int>(c.x) + ox, static_cast<int>(c.y) + oy);
+    return sum;
+  }
+  std::uint32_t Bound(int bx, int by) const {
+    std::uint32_t sum = 0;
+    for (const Point2& c : cells) sum += grid.BoundAt(static_cast<int>(c.x) + bx, static_cast<int>(c.y) + by);
+    return sum;
+  }
+  std::uint32_t CoarseBound(int bx, int by) const {
+    std::uint32_t sum = 0;
+    for (const Point2& c : cells) sum += grid.CoarseBoundAt(static_cast<int>(c.x) + bx, static_cast<int>(c.y) + by);
+    return sum;
+  }
+};
+
+// What one sweep keeps: the best pose, and (first sweep) the poses near it in score or (second
+// sweep) the best pose to stay away from.
+struct SweepState {
   Peak best;
-  const float inv_res = 1.0f / grid.resolution_m();
-  const int sep_cells = static_cast<int>(config.peak_separation_m * inv_res);
+  NearBest* near_best = nullptr;
+  const Peak* exclude = nullptr;
+  float ratio = 1.0f;      // max_second_ratio
+  int sep_cells = 0;
+  bool angle_far = true;   // this angle is far from `exclude`'s
+  std::uint32_t* evaluated = nullptr;
+
+  // A block whose bound cannot reach what this sweep still looks for.
+  bool Prune(std::uint32_t bound) const {
+    const float b = static_cast<float>(bound);
+    return near_best != nullptr ? b < ratio * best.score : b <= best.score;
+  }
+  void Offer(const Peak& pose) {
+    if (pose.score > best.score) best = pose;
+    if (near_best != nullptr && pose.score >= ratio * best.score) near_best->Add(pose, ratio * best.score);
+  }
+};
+
+// The offsets of one kBlock x kBlock block (clipped to the window), each scored.
+void ScoreBlock(const CloudScorer& scorer, int bx, int by, int n, float dtheta, SweepState* st) {
   constexpr int kB = MatchGrid::kBlock;
-  for (int a = -n_angles; a <= n_angles; ++a) {
-    const float dtheta = static_cast<float>(a) * step;
-    const bool angle_far = exclude == nullptr || std::fabs(dtheta - exclude->dtheta) >= config.peak_separation_rad;
-    const PointTransform t(Pose2{initial.x, initial.y, initial.theta + dtheta});
+  for (int oy = by; oy < by + kB && oy <= n; ++oy) {
+    for (int ox = bx; ox < bx + kB && ox <= n; ++ox) {
+      if (Excluded(st->exclude, st->angle_far, ox, oy, st->sep_cells)) continue;
+      ++*st->evaluated;
+      st->Offer(Peak{static_cast<float>(scorer.Score(ox, oy)), ox, oy, dtheta});
+    }
+  }
+}
+
+// One sweep over the window: per angle, kCoarseBlock squares of offsets pruned by their bound,
+// then the kBlock squares inside, then the offsets. With `exclude` set, poses within the
+// separation of it are skipped (the search for a second, separate peak); without, the poses within
+// max_second_ratio of the best go to `near_best`, and only blocks that cannot reach that ratio are
+// pruned.
+Peak Sweep(const MatchGrid& grid, Span<const Point2> points, const SweepPlan& plan, const Peak* exclude,
+           NearBest* near_best, const CorrelativeSearchConfig& config, Span<Point2> rotated, std::uint32_t* evaluated) {
+  const float inv_res = 1.0f / grid.resolution_m();
+  SweepState st;
+  st.near_best = near_best;
+  st.exclude = exclude;
+  st.ratio = config.max_second_ratio;
+  st.sep_cells = static_cast<int>(config.peak_separation_m * inv_res);
+  st.evaluated = evaluated;
+  constexpr int kB = MatchGrid::kBlock, kC = MatchGrid::kCoarseBlock;
+  const int n = plan.n_offsets;
+  const CloudScorer scorer{grid, Span<const Point2>(rotated.data(), points.size())};
+  for (int k = 0; k <= 2 * plan.n_angles; ++k) {
+    const float dtheta = static_cast<float>(AngleAt(k)) * plan.step;
+    st.angle_far = exclude == nullptr || std::fabs(dtheta - exclude->dtheta) >= config.peak_separation_rad;
+    const PointTransform t(Pose2{plan.initial.x, plan.initial.y, plan.initial.theta + dtheta});
     for (std::size_t i = 0; i < points.size(); ++i) {
       const Point2 w = t(points[i]);
       // Whole match cells: every offset below moves all points by whole cells.
       rotated[i] = Point2{static_cast<float>(FloorToInt((w.x - grid.origin().x) * inv_res)),
                           static_cast<float>(FloorToInt((w.y - grid.origin().y) * inv_res))};
     }
-    for (int by = -n_offsets; by <= n_offsets; by += kB) {
-      for (int bx = -n_offsets; bx <= n_offsets; bx += kB) {
-        // Upper bound of every offset in the block [bx, bx + kB) x [by, by + kB).
-        std::uint32_t bound = 0;
-        for (std::size_t i = 0; i < points.size(); ++i) {
-          bound += grid.BoundAt(static_cast<int>(rotated[i].x) + bx, static_cast<int>(rotated[i].y) + by);
-        }
+    // The guess itself first: a good score from the start prunes most blocks.
+    if (k == 0 && exclude == nullptr) {
+      ++*evaluated;
+      st.Offer(Peak{static_cast<float>(scorer.Score(0, 0)), 0, 0, 0.0f});
+    }
+    for (int cy = -n; cy <= n; cy += kC) {
+      for (int cx = -n; cx <= n; cx += kC) {
         ++*evaluated;
-        if (static_cast<float>(bound) <= best.score) continue;
-        for (int oy = by; oy < by + kB && oy <= n_offsets; ++oy) {
-          for (int ox = bx; ox < bx + kB && ox <= n_offsets; ++ox) {
-            if (Excluded(exclude, angle_far, ox, oy, sep_cells)) continue;
-            std::uint32_t sum = 0;
-            for (std::size_t i = 0; i < points.size(); ++i) {
-              sum += grid.AtCell(static_cast<int>(rotated[i].x) + ox, static_cast<int>(rotated[i].y) + oy);
-            }
+        if (st.Prune(scorer.CoarseBound(cx, cy))) continue;
+        for (int by = cy; by < cy + kC && by <= n; by += kB) {
+          for (int bx = cx; bx < cx + kC && bx <= n; bx += kB) {
             ++*evaluated;
-            if (static_cast<float>(sum) > best.score) best = Peak{static_cast<float>(sum), ox, oy, dtheta};
+            if (!st.Prune(scorer.Bound(bx, by))) ScoreBlock(scorer, bx, by, n, dtheta, &st);
           }
         }
       }
     }
   }
-  return best;
+  return st.best;
 }
 
 }  // namespace
@@ -198,13 +310,18 @@ CorrelativeSearchResult CorrelativeSearch(const MatchGrid& grid, Span<const Poin
   for (const Point2& p : points) max_range = std::fmax(max_range, std::sqrt(p.x * p.x + p.y * p.y));
   float step = grid.resolution_m() / std::fmax(max_range, 1.0f);
   step = std::fmin(std::fmax(step, config.min_angle_step_rad), config.max_angle_step_rad);
-  const int n_angles = static_cast<int>(window_rad / step);
-  const int n_offsets = static_cast<int>(window_m / grid.resolution_m());
-  const Peak best = Sweep(grid, points, initial, n_offsets, n_angles, step, nullptr, config, rotated, &result.poses_evaluated);
-  const Peak second = Sweep(grid, points, initial, n_offsets, n_angles, step, &best, config, rotated, &result.poses_evaluated);
+  const SweepPlan plan{initial, static_cast<int>(window_m / grid.resolution_m()), static_cast<int>(window_rad / step), step};
+  // One sweep finds the best pose and keeps the poses close to it in score; only when too many
+  // are (a ridge) does a second sweep look for the best pose away from the best.
+  NearBest near_best;
+  const Peak best = Sweep(grid, points, plan, nullptr, &near_best, config, rotated, &result.poses_evaluated);
+  const int sep_cells = static_cast<int>(config.peak_separation_m / grid.resolution_m());
+  const float second = near_best.overflow()
+                           ? Sweep(grid, points, plan, &best, nullptr, config, rotated, &result.poses_evaluated).score
+                           : near_best.BestSeparated(best, config.peak_separation_rad, sep_cells);
   const float norm = 1.0f / (255.0f * static_cast<float>(points.size()));
   result.score = best.score * norm;
-  result.second_score = second.score > 0.0f ? second.score * norm : 0.0f;
+  result.second_score = second > 0.0f ? second * norm : 0.0f;
   result.pose = Pose2{initial.x + static_cast<float>(best.ox) * grid.resolution_m(),
                       initial.y + static_cast<float>(best.oy) * grid.resolution_m(), NormalizeAngle(initial.theta + best.dtheta)};
   const bool strong = result.score >= config.min_score;

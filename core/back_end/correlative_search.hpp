@@ -19,14 +19,15 @@ namespace dpcr {
 // obstacle, falling with the distance to the nearest one (a chamfer distance transform).
 class MatchGrid {
  public:
-  // `bounds` (as large as `cells`): for each cell the largest likelihood of the kBlock x kBlock
-  // cells from it up and right, the upper bound a branch-and-bound search prunes by.
-  MatchGrid(Span<std::uint8_t> cells, Span<std::uint8_t> bounds, int max_w, int max_h);
+  // `bounds` and `coarse_bounds` (each as large as `cells`): for each cell the largest likelihood
+  // of the kBlock x kBlock (kCoarseBlock x kCoarseBlock) cells from it up and right, the upper
+  // bounds a two-level branch-and-bound search prunes by.
+  MatchGrid(Span<std::uint8_t> cells, Span<std::uint8_t> bounds, Span<std::uint8_t> coarse_bounds, int max_w, int max_h);
   // Storage attached later (memory lent by another stage: RegistrationReference::LendTable).
   MatchGrid(int max_w, int max_h) : max_w_(max_w), max_h_(max_h) {}
-  // Takes 2 * max_w * max_h bytes: the cells, then the bounds.
+  // Takes 3 * max_w * max_h bytes: the cells, then the two bound grids.
   void Attach(Span<std::uint8_t> bytes);
-  static std::size_t BytesFor(int max_w, int max_h) { return 2u * static_cast<std::size_t>(max_w * max_h); }
+  static constexpr std::size_t BytesFor(int max_w, int max_h) { return 3u * static_cast<std::size_t>(max_w * max_h); }
   MatchGrid(const MatchGrid&) = delete;
   MatchGrid& operator=(const MatchGrid&) = delete;
 
@@ -43,7 +44,14 @@ class MatchGrid {
   std::uint8_t BoundAt(int x, int y) const {
     return (x <= -kBlock || y <= -kBlock || x >= w_ || y >= h_) ? 0 : BoundAtClamped(x, y);
   }
+  // The largest likelihood of cells (x .. x + kCoarseBlock - 1, y .. y + kCoarseBlock - 1).
+  std::uint8_t CoarseBoundAt(int x, int y) const {
+    return (x <= -kCoarseBlock || y <= -kCoarseBlock || x >= w_ || y >= h_)
+               ? 0
+               : coarse_bounds_[static_cast<std::size_t>((y < 0 ? 0 : y) * w_ + (x < 0 ? 0 : x))];
+  }
   static constexpr int kBlock = 4;
+  static constexpr int kCoarseBlock = 4 * kBlock;
   float resolution_m() const { return res_; }
   Point2 origin() const { return origin_; }
   int width() const { return w_; }
@@ -52,11 +60,13 @@ class MatchGrid {
 
  private:
   void DistanceTransform();
-  void BuildBounds();
+  // out(x, y) = the largest of in(x + i * step, y + j * step), i, j < 4 (0 past the edges).
+  void MaxOfFour(Span<const std::uint8_t> in, Span<std::uint8_t> out, int step);
   std::uint8_t BoundAtClamped(int x, int y) const;
 
   Span<std::uint8_t> cells_;
   Span<std::uint8_t> bounds_;
+  Span<std::uint8_t> coarse_bounds_;
   int max_w_, max_h_;
   int w_ = 0, h_ = 0;
   int obstacles_ = 0;
@@ -67,11 +77,14 @@ class MatchGrid {
 template <int kW, int kH>
 class MatchGridStorage : public MatchGrid {
  public:
-  MatchGridStorage() : MatchGrid(Span<std::uint8_t>(cells_, kW * kH), Span<std::uint8_t>(bounds_, kW * kH), kW, kH) {}
+  MatchGridStorage()
+      : MatchGrid(Span<std::uint8_t>(cells_, kW * kH), Span<std::uint8_t>(bounds_, kW * kH),
+                  Span<std::uint8_t>(coarse_bounds_, kW * kH), kW, kH) {}
 
  private:
   std::uint8_t cells_[kW * kH];
   std::uint8_t bounds_[kW * kH];
+  std::uint8_t coarse_bounds_[kW * kH];
 };
 
 struct CorrelativeSearchConfig {
