@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Installs what a fresh Debian 12 machine lacks to build dpcr, in three levels:
+# Installs what a fresh Debian 12 machine lacks to build dpcr, in levels:
 #   --host   build and run the host apps (scripts/demo.sh: dpcr-sim)
 #   --tests  + Catch2 and valgrind: the host test suite (scripts/test.sh, dpcr-bench)
-#   --all    + cross compilers, qemu-user and the bare-metal toolchain (.ci/run; the default)
+#   --fuzz   + clang and its runtime libraries (libFuzzer, sanitizers): scripts/fuzz.sh
+#   --all    + the fuzz level, cross compilers, qemu-user and the bare-metal toolchain (.ci/run;
+#            the default)
 #   --board  + qemu-system-arm and cpio for tools/emulated-board-test (not in CI yet). The
 #            emulated board's own kernel and busybox are fetched by that tool with apt-get
 #            download, not installed.
@@ -19,6 +21,9 @@ tests=(
   catch2                             # unit tests
   valgrind                           # instruction-count budgets (callgrind) and dpcr-bench
 )
+fuzz=(
+  clang libclang-rt-14-dev           # scripts/fuzz.sh: the fuzz preset (libFuzzer, ASan, UBSan)
+)
 cross=(
   git
   g++-arm-linux-gnueabihf g++-aarch64-linux-gnu qemu-user   # cross presets + tests under emulation
@@ -30,9 +35,10 @@ board=(
 case $level in
   --host) packages=("${host[@]}") ;;
   --tests) packages=("${host[@]}" "${tests[@]}") ;;
-  --all) packages=("${host[@]}" "${tests[@]}" "${cross[@]}") ;;
-  --board) packages=("${host[@]}" "${tests[@]}" "${cross[@]}" "${board[@]}") ;;
-  *) echo "usage: $0 [--host|--tests|--all|--board]" >&2; exit 2 ;;
+  --fuzz) packages=("${host[@]}" "${fuzz[@]}") ;;
+  --all) packages=("${host[@]}" "${tests[@]}" "${fuzz[@]}" "${cross[@]}") ;;
+  --board) packages=("${host[@]}" "${tests[@]}" "${fuzz[@]}" "${cross[@]}" "${board[@]}") ;;
+  *) echo "usage: $0 [--host|--tests|--fuzz|--all|--board]" >&2; exit 2 ;;
 esac
 
 missing=()
