@@ -63,10 +63,11 @@ bool PlicpOk(const PlicpConfig& c) {
 
 // The first registration's coarse pose search (rotation_search.hpp). The grid's cells and the
 // window's steps are counted in ints from these: a cell under the grid's 5 mm, a kernel outside
-// 1..6 cells (the search caps it at 6), an angle step under 1 mrad (0 = translations only) or a
+// 1..6 cells (the search caps it at 6), an angle step under 1 mrad (0 = translations only), a
+// sigma under 1 mm (2 sigma^2 is 0 in float for sigma = 1e-30: the score table turns NaN) or a
 // non-finite value would overflow them or loop for ever (found by fuzz/fuzz_mapper_config.cpp).
 bool PoseSearchOk(const PoseSearchConfig& c) {
-  return In(c.resolution_m, 0.005f, 1.0f) && AboveUpTo(c.sigma_m, 0.0f, 10.0f) && In(c.kernel_radius_cells, 1, 6) &&
+  return In(c.resolution_m, 0.005f, 1.0f) && In(c.sigma_m, 1e-3f, 10.0f) && In(c.kernel_radius_cells, 1, 6) &&
          In(c.angle_window_rad, 0.0f, kPi) && (c.angle_step_rad == 0.0f || In(c.angle_step_rad, 1e-3f, kPi)) &&
          In(c.xy_window_m, 0.0f, 10.0f) && In(c.max_points, 1, kMaxCount) && In(c.step_penalty, 0.0f, 1.0f) &&
          In(c.min_gain, 0.0f, 1.0f);

@@ -151,10 +151,10 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(front_end.prior_info_theta, kNonNegative),
       INT_FIELD(front_end.second_registration_max_points, kCount),  // 0 divided by zero in SubmapTarget
       // The coarse pose search and the weak-match rebuild, unchecked until fuzz/fuzz_mapper_config.cpp
-      // found e.g. kernel_radius_cells = INT_MIN, sigma_m = NaN or angle_window_rad = NaN
+      // found e.g. kernel_radius_cells = INT_MIN, sigma_m = NaN or 1e-30, or angle_window_rad = NaN
       // overflowing int casts in rotation_search.cpp after a rejected registration.
       FLOAT_FIELD(front_end.search.resolution_m, (std::vector<double>{0.0, -1.0, kNaN, kInf, 1e-30, 0.001, 2.0})),
-      FLOAT_FIELD(front_end.search.sigma_m, kPositive),
+      FLOAT_FIELD(front_end.search.sigma_m, (std::vector<double>{0.0, -1.0, kNaN, kInf, 1e30, 1e-30, 1e-4})),
       INT_FIELD(front_end.search.kernel_radius_cells, (std::vector<double>{0.0, -1.0, -2147483648.0, 7.0})),
       FLOAT_FIELD(front_end.search.angle_window_rad, (std::vector<double>{-1.0, kNaN, kInf, 4.0})),
       FLOAT_FIELD(front_end.search.angle_step_rad, (std::vector<double>{-1.0, kNaN, kInf, 1e-30, 1e-4, 4.0})),
