@@ -48,8 +48,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   config.lidar.kind = (data[0] & 1) != 0 ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06;
   config.lidar.timing = (data[0] & 2) != 0 && config.lidar.kind == dpcr::LidarKind::kLd06 ? dpcr::LidarTiming::kDeviceClock
                                                                                           : dpcr::LidarTiming::kArrival;
-  // ~71 KiB: static, built once per configuration would keep state across inputs; a heap object
-  // per input keeps runs independent.
+  // ~71 KiB, built per input (on the heap) so that no state carries over from one input to the next.
   CheckingSink sink;
   auto* pipeline = new dpcr::DevicePipeline(config, &sink);
   std::int64_t now_us = 1000000;
