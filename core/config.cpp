@@ -61,6 +61,18 @@ bool PlicpOk(const PlicpConfig& c) {
   return loop && accept;
 }
 
+// The first registration's coarse pose search (rotation_search.hpp). The grid's cells and the
+// window's steps are counted in ints from these: a cell under the grid's 5 mm, a kernel outside
+// 1..6 cells (the search caps it at 6), an angle step under 1 mrad (0 = translations only), a
+// sigma under 1 mm (2 sigma^2 is 0 in float for sigma = 1e-30: the score table turns NaN) or a
+// non-finite value would overflow them or loop for ever (found by fuzz/fuzz_mapper_config.cpp).
+bool PoseSearchOk(const PoseSearchConfig& c) {
+  return In(c.resolution_m, 0.005f, 1.0f) && In(c.sigma_m, 1e-3f, 10.0f) && In(c.kernel_radius_cells, 1, 6) &&
+         In(c.angle_window_rad, 0.0f, kPi) && (c.angle_step_rad == 0.0f || In(c.angle_step_rad, 1e-3f, kPi)) &&
+         In(c.xy_window_m, 0.0f, 10.0f) && In(c.max_points, 1, kMaxCount) && In(c.step_penalty, 0.0f, 1.0f) &&
+         In(c.min_gain, 0.0f, 1.0f);
+}
+
 // A miss range of 0 (whole rays), or one that reaches past the hit margin.
 bool MissRangeOk(float range_m, const GridConfig& g) {
   return range_m == 0.0f || AboveUpTo(range_m, g.hit_margin_m, kMaxRangeM);
@@ -86,7 +98,11 @@ bool FrontEndOk(const FrontEndConfig& f, const GridConfig& g) {
                        std::fabs(cells_per_region - std::round(cells_per_region)) < 1e-3f &&
                        In(f.region_hysteresis_m, 0.0f, f.region_width_m / 2) && f.region_hysteresis_m < f.region_width_m / 2 &&
                        In(f.reference_inner_margin_m, 0.0f, kMaxDistanceM);
-  const bool registration = In(f.prior_info_xy, 0.0f, kMaxInformation) && In(f.prior_info_theta, 0.0f, kMaxInformation) &&
+  // The search (a turn threshold of 0 = never before PLICP) and the weak-match rebuild (a ratio of
+  // 0 = off; its threshold, like the references', one the grid can reach from 0).
+  const bool search = PoseSearchOk(f.search) && In(f.search_turn_rad, 0.0f, kPi) &&
+                      In(f.weak_match_inlier_ratio, 0.0f, 1.0f) && f.weak_match_obstacle_threshold >= 0;
+  const bool registration = search && In(f.prior_info_xy, 0.0f, kMaxInformation) && In(f.prior_info_theta, 0.0f, kMaxInformation) &&
                             In(f.second_registration_max_points, 1, kMaxCount) && PlicpOk(f.first_registration) &&
                             PlicpOk(f.second_registration) &&
                             ReferenceOk(f.submap_reference, most_hits) &&

@@ -5,7 +5,9 @@
 #   --bench  + python3 and python3-matplotlib: tools/bench/run (results.json, docs/RESULTS.md, plots)
 #   --peer   + mrpt-apps: the optional side-by-side peer of tools/bench/run (MRPT icp-slam; large,
 #            never needed by CI)
-#   --all    + cross compilers, qemu-user and the bare-metal toolchain (.ci/run; the default)
+#   --fuzz   + clang and its runtime libraries (libFuzzer, sanitizers): scripts/fuzz.sh
+#   --all    + the fuzz level, cross compilers, qemu-user and the bare-metal toolchain (.ci/run;
+#            the default)
 #   --board  + qemu-system-arm and cpio for tools/emulated-board-test (not in CI yet). The
 #            emulated board's own kernel and busybox are fetched by that tool with apt-get
 #            download, not installed.
@@ -28,6 +30,9 @@ bench=(
 peer=(
   mrpt-apps                          # tools/bench/run: MRPT icp-slam and carmen2rawlog (optional)
 )
+fuzz=(
+  clang libclang-rt-14-dev           # scripts/fuzz.sh: the fuzz preset (libFuzzer, ASan, UBSan)
+)
 cross=(
   git
   g++-arm-linux-gnueabihf g++-aarch64-linux-gnu qemu-user   # cross presets + tests under emulation
@@ -41,9 +46,10 @@ case $level in
   --tests) packages=("${host[@]}" "${tests[@]}") ;;
   --bench) packages=("${host[@]}" "${tests[@]}" "${bench[@]}") ;;
   --peer) packages=("${host[@]}" "${tests[@]}" "${bench[@]}" "${peer[@]}") ;;
-  --all) packages=("${host[@]}" "${tests[@]}" "${cross[@]}") ;;
-  --board) packages=("${host[@]}" "${tests[@]}" "${cross[@]}" "${board[@]}") ;;
-  *) echo "usage: $0 [--host|--tests|--bench|--peer|--all|--board]" >&2; exit 2 ;;
+  --fuzz) packages=("${host[@]}" "${fuzz[@]}") ;;
+  --all) packages=("${host[@]}" "${tests[@]}" "${fuzz[@]}" "${cross[@]}") ;;
+  --board) packages=("${host[@]}" "${tests[@]}" "${fuzz[@]}" "${cross[@]}" "${board[@]}") ;;
+  *) echo "usage: $0 [--host|--tests|--bench|--peer|--fuzz|--all|--board]" >&2; exit 2 ;;
 esac
 
 missing=()

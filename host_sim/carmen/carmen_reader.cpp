@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cstdint>
 #include <cmath>
+#include <limits>
 #include <system_error>
 
 #include "host_sim/eval/stamp_text.hpp"
@@ -67,7 +68,14 @@ class Tokens {
     if (!ParseNumber(w, &v)) throw CarmenError(line_, std::string("bad ") + what + " '" + std::string(w) + "'");
     return v;
   }
-  float Float(const char* what) { return static_cast<float>(Number(what)); }
+  // A number that must also fit a float: a finite double past FLT_MAX would become infinite.
+  float Float(const char* what) {
+    const double v = Number(what);
+    if (std::fabs(v) > static_cast<double>(std::numeric_limits<float>::max())) {
+      throw CarmenError(line_, std::string("bad ") + what + " '" + std::string(tokens_[next_ - 1]) + "': out of range");
+    }
+    return static_cast<float>(v);
+  }
   long Count(const char* what, long max) {
     const double v = Number(what);
     if (v < 0 || v > static_cast<double>(max) || v != std::floor(v)) {
@@ -108,6 +116,8 @@ void ReadRanges(Tokens& t, LaserRecord* r) {
 void ParseFlaser(Tokens& t, LaserRecord* r) {
   ReadRanges(t, r);
   const std::size_t n = r->ranges_m.size();
+  // One beam cannot span -90..+90 deg (its step would be 180 / 0).
+  if (n < 2) throw CarmenError(t.line(), "FLASER line with one reading");
   // Beams span -90..+90 deg: 181/361 beams include both ends, 180/360 beams are 1/0.5 deg steps.
   const float step_deg = (n % 2 == 1) ? 180.0f / static_cast<float>(n - 1) : 180.0f / static_cast<float>(n);
   r->angle_min_rad = -90.0f * kDegToRad;

@@ -52,14 +52,17 @@ bool ParseCandumpLine(const std::string& line, CandumpRecord* out) {
     if (id > kCanSffMask) return false;
     f.id = id;
   } else if (id_text.size() == 8) {
-    f.id = (id & kCanErrFlag) != 0 ? id : ((id & kCanEffMask) | kCanEffFlag);
+    // An error frame is its class bits and the error flag (the EFF and RTR bits mean nothing
+    // there, and FormatCandumpLine does not write them).
+    f.id = (id & kCanErrFlag) != 0 ? (id & (kCanErrFlag | kCanEffMask)) : ((id & kCanEffMask) | kCanEffFlag);
   } else {
     return false;
   }
   if (!data.empty() && (data[0] == 'R' || data[0] == 'r')) {
+    // "R", or "R" and the requested length as one digit 0-8 (candump writes it when not 0).
+    if (data.size() > 2 || (data.size() == 2 && (data[1] < '0' || data[1] > '8'))) return false;
     f.id |= kCanRtrFlag;
-    f.dlc = data.size() > 1 ? static_cast<std::uint8_t>(data[1] - '0') : 0;
-    if (f.dlc > 8) return false;
+    f.dlc = data.size() == 2 ? static_cast<std::uint8_t>(data[1] - '0') : 0;
     out->frame = f;
     return true;
   }
@@ -91,6 +94,7 @@ std::string FormatCandumpLine(const CandumpRecord& record) {
   std::string line = "(" + eval::FormatStamp(record.stamp_us) + ") " + record.interface + " " + id + "#";
   if ((f.id & kCanRtrFlag) != 0) {
     line += "R";
+    if (f.dlc > 0 && f.dlc <= 8) line.push_back(static_cast<char>('0' + f.dlc));
     return line;
   }
   static const char kHex[] = "0123456789ABCDEF";

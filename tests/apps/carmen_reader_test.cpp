@@ -66,6 +66,12 @@ TEST_CASE("Malformed lines are errors that name the line and the reason") {
       "FLASER -1 0 0 0 0 0 0 1.0 h 1\n",                             // negative count
       "ODOM 1 2 3 0 0 0 notastamp h 1\n",                            // bad stamp
       "garbage line\n",                                              // not a message
+      // Found by fuzz/fuzz_carmen.cpp: one FLASER reading made an infinite angle step (180 / 0),
+      // and a finite double past the float range an infinite float.
+      "FLASER 1 1 2 3 0 0 0 0 0 0 99.000000 nohost 0.7\n",          // one reading
+      "FLASER 2 1e39 2 0 0 0 0 0 0 1.0 h 1\n",                      // range past float
+      "ODOM 1 -4e38 3 0 0 0 1.0 h 1\n",                             // pose past float
+      "ROBOTLASER1 0 -1e300 3.0 1.0 30.0 0.01 0 2 1 2 0 0 0 0 0 0 0 0 0 0 0 5.0 h 5.1\n",  // angle past float
   };
   for (const char* text : bad) {
     std::istringstream log(std::string("# header\n") + text);

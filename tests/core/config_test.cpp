@@ -150,6 +150,21 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(front_end.prior_info_xy, kNonNegative),
       FLOAT_FIELD(front_end.prior_info_theta, kNonNegative),
       INT_FIELD(front_end.second_registration_max_points, kCount),  // 0 divided by zero in SubmapTarget
+      // The coarse pose search and the weak-match rebuild, unchecked until fuzz/fuzz_mapper_config.cpp
+      // found e.g. kernel_radius_cells = INT_MIN, sigma_m = NaN or 1e-30, or angle_window_rad = NaN
+      // overflowing int casts in rotation_search.cpp after a rejected registration.
+      FLOAT_FIELD(front_end.search.resolution_m, (std::vector<double>{0.0, -1.0, kNaN, kInf, 1e-30, 0.001, 2.0})),
+      FLOAT_FIELD(front_end.search.sigma_m, (std::vector<double>{0.0, -1.0, kNaN, kInf, 1e30, 1e-30, 1e-4})),
+      INT_FIELD(front_end.search.kernel_radius_cells, (std::vector<double>{0.0, -1.0, -2147483648.0, 7.0})),
+      FLOAT_FIELD(front_end.search.angle_window_rad, (std::vector<double>{-1.0, kNaN, kInf, 4.0})),
+      FLOAT_FIELD(front_end.search.angle_step_rad, (std::vector<double>{-1.0, kNaN, kInf, 1e-30, 1e-4, 4.0})),
+      FLOAT_FIELD(front_end.search.xy_window_m, kNonNegative),
+      INT_FIELD(front_end.search.max_points, kCount),
+      FLOAT_FIELD(front_end.search.step_penalty, kRatio),
+      FLOAT_FIELD(front_end.search.min_gain, kRatio),
+      FLOAT_FIELD(front_end.search_turn_rad, (std::vector<double>{-1.0, kNaN, kInf, 4.0})),
+      FLOAT_FIELD(front_end.weak_match_inlier_ratio, kRatio),
+      INT16_FIELD(front_end.weak_match_obstacle_threshold, -1, -32768),
       FLOAT_FIELD(back_end.neighbour_factor, kPositive),
       INT_FIELD(back_end.min_scans, kCount),
       FLOAT_FIELD(back_end.min_match_rate, kRatio),
@@ -231,4 +246,13 @@ TEST_CASE("Init checks the profile's capacities against the configuration") {
   CHECK(refused([](dpcr::MapperConfig& e) { e.back_end.search_points = 201; }));
   // A 6 m region (plus its hysteresis) does not fit the tiny profile's 6.4 m box.
   CHECK(refused([](dpcr::MapperConfig& e) { e.front_end.region_width_m = 6.0f; }));
+}
+
+TEST_CASE("The search and weak-match settings' off values validate") {
+  dpcr::MapperConfig c;
+  c.front_end.search.angle_step_rad = 0.0f;  // translations only
+  c.front_end.search_turn_rad = 0.0f;        // no search before PLICP
+  c.front_end.weak_match_inlier_ratio = 0.0f;  // no early rebuild
+  c.front_end.search.kernel_radius_cells = 6;
+  REQUIRE(dpcr::Validate(c) == dpcr::Status::kOk);
 }

@@ -28,6 +28,18 @@ TEST_CASE("candump lines as candump -l writes them") {
   REQUIRE(dpcr::ParseCandumpLine("(2.000000) can0 121#R", &r));
   CHECK((r.frame.id & dpcr::kCanRtrFlag) != 0);
   CHECK(dpcr::FormatCandumpLine(r) == "(2.000000) can0 121#R");
+  // Found by fuzz/fuzz_candump_line.cpp: a remote frame's requested length was read and then
+  // dropped when written back ("R6" became "R"); a digit past 8 or more text is not a length.
+  REQUIRE(dpcr::ParseCandumpLine("(2.000000) can0 121#R6", &r));
+  CHECK(((r.frame.id & dpcr::kCanRtrFlag) != 0 && r.frame.dlc == 6));
+  CHECK(dpcr::FormatCandumpLine(r) == "(2.000000) can0 121#R6");
+  CHECK_FALSE(dpcr::ParseCandumpLine("(2.000000) can0 121#R9", &r));
+  CHECK_FALSE(dpcr::ParseCandumpLine("(2.000000) can0 121#R6X", &r));
+  // Also found by the fuzzer: an error frame's id with the EFF bit set kept it, which the
+  // formatter drops: the record did not survive a write and read.
+  REQUIRE(dpcr::ParseCandumpLine("(1.500000) can0 A3272501#0000000000", &r));
+  CHECK(r.frame.id == 0x23272501u);
+  CHECK(dpcr::FormatCandumpLine(r) == "(1.500000) can0 23272501#0000000000");
 
   REQUIRE(dpcr::ParseCandumpLine("(3.000000) can0 7FF#", &r));
   CHECK(r.frame.dlc == 0);
