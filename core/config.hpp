@@ -50,11 +50,7 @@ constexpr ReferenceConfig ReferenceWithThreshold(std::int16_t obstacle_threshold
 struct FrontEndConfig {
   int submap_scans = 20;          // N: scans fused into the submap
   int submap_line_period = 10;    // K1: re-extract submap lines every K1 scans
-  // K2: re-extract regional-map lines every K2 scans (and whenever the maps in the reference change
-  // or the back end moved anchors). 500, not the paper's 50: lines rebuilt from cells the drifting
-  // robot just wrote let the map follow its heading; a reference held for 50 s anchors it
-  // (measured: docs/front-end-accuracy.md, "Registration periods and prior").
-  int region_line_period = 500;
+  int region_line_period = 50;    // K2: re-extract regional-map lines every K2 scans
   int second_registration_period = 5;  // Ks: submap -> regional map every Ks scans
   // Misses a submap scan applies: only the last this-many metres of each ray before its hit
   // (0 = the whole ray). The submap serves registration, which needs hits and the free space
