@@ -62,9 +62,10 @@ void SaveMapIfAsked(const Options& opt, const MapperType& mapper) {
 }
 
 void PrintSummary(const dpcr::output::RunRecord& run, const nlohmann::json& metrics, const std::string& out) {
-  std::fprintf(stderr, "dpcr-replay: %zu scans in %.2f s (%.0f scans/s), mapper %s, %d regions",
+  std::fprintf(stderr, "dpcr-replay: %zu scans in %.2f s (%.0f scans/s), mapper %s, %d regions%s",
                run.estimate.size(), run.wall_seconds, static_cast<double>(run.estimate.size()) / run.wall_seconds,
-               metrics["mapper"].get<std::string>().c_str(), metrics["regions"].get<int>());
+               metrics["mapper"].get<std::string>().c_str(), metrics["regions"].get<int>(),
+               dpcr::output::TrackingSummary(metrics).c_str());
   if (metrics.contains("relations")) {
     const auto& r = metrics["relations"];
     std::fprintf(stderr, ", relations %.3f +- %.3f m / %.2f +- %.2f deg (%d matched, %d unmatched)",
@@ -72,6 +73,8 @@ void PrintSummary(const dpcr::output::RunRecord& run, const nlohmann::json& metr
                  r["rot_std_deg"].get<double>(), r["matched"].get<int>(), r["unmatched"].get<int>());
   }
   std::fprintf(stderr, " -> %s/\n", out.c_str());
+  const std::string warning = dpcr::output::TrackingWarning(metrics);
+  if (!warning.empty()) std::fprintf(stderr, "dpcr-replay: %s\n", warning.c_str());
 }
 
 // The mapper for a CARMEN log: the lidar mount from --laser-offset, else from the log's PARAM.

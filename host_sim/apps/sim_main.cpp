@@ -114,9 +114,9 @@ int Run(const Options& opt) {
   if (!opt.save_map.empty()) dpcr::output::SaveMapFile(mapper, opt.save_map);
   dpcr::apps::WriteScanTimes(opt.scan_times, run);
 
-  std::fprintf(stderr, "dpcr-sim: %s, %.0f min, %zu scans in %.1f s, mapper %s, %d regions, status %s",
+  std::fprintf(stderr, "dpcr-sim: %s, %.0f min, %zu scans in %.1f s, mapper %s, %d regions%s",
                opt.world.c_str(), opt.minutes, run.estimate.size(), run.wall_seconds, mapper.pipeline(),
-               mapper.region_count(), dpcr::ToString(mapper.status()));
+               mapper.region_count(), dpcr::output::TrackingSummary(metrics).c_str());
   if (metrics.contains("accuracy")) {
     std::fprintf(stderr, ", LocErr_ave %.3f m, ATE %.3f m, max %.3f m", metrics["accuracy"]["loc_err_ave_m"].get<double>(),
                  metrics["accuracy"]["ate_rmse_m"].get<double>(), metrics["accuracy"]["max_err_m"].get<double>());
@@ -124,6 +124,8 @@ int Run(const Options& opt) {
   if (!opt.load_map.empty()) std::fprintf(stderr, ", loaded %s", opt.load_map.c_str());
   if (!opt.save_map.empty()) std::fprintf(stderr, ", map saved to %s (%zu bytes)", opt.save_map.c_str(), mapper.map_file_bytes());
   std::fprintf(stderr, " -> %s/\n", opt.out.c_str());
+  const std::string warning = dpcr::output::TrackingWarning(metrics);
+  if (!warning.empty()) std::fprintf(stderr, "dpcr-sim: %s\n", warning.c_str());
   return 0;
 }
 
