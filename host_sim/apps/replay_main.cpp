@@ -44,6 +44,7 @@ struct Options {
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
   std::string scan_times;
+  std::string heading = "wheels";  // FrontEndConfig::gyro_heading
 };
 
 // --load-map after Init: a second session in the saved map's frame, at the given start pose.
@@ -201,6 +202,7 @@ int ReplayDevice(const Options& opt) {
   dpcr::MapperConfig config;
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
+  config.front_end.gyro_heading = opt.heading == "gyro";
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));
   LoadMapIfAsked(opt, &mapper);
@@ -254,6 +256,8 @@ int main(int argc, char** argv) {
   app.add_option("--region-width", opt.region_width_m, "region width S in metres (default: the configuration's, 4 m)")
       ->check(CLI::PositiveNumber);
   app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");
+  app.add_option("--heading", opt.heading, "--uart: the prediction's heading increment: wheels, or the integrated gyro frames (0x121)")
+      ->check(CLI::IsMember({"wheels", "gyro"}))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   if (opt.carmen.empty() == opt.uart.empty()) {
     std::fprintf(stderr, "dpcr-replay: give either --carmen FILE or --uart FILE [--candump FILE]\n%s", app.help().c_str());

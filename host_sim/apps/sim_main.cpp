@@ -35,12 +35,31 @@ struct Options {
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
   std::string scan_times;
+  std::string heading = "wheels";  // the prediction's heading: wheels, or gyro (FrontEndConfig::gyro_heading)
 };
+
+// The summary line (stderr), and a warning when the run was lost most of the time.
+template <class MapperType>
+void PrintSummary(const Options& opt, const MapperType& mapper, const dpcr::output::RunRecord& run,
+                  const nlohmann::json& metrics) {
+  std::fprintf(stderr, "dpcr-sim: %s, %.0f min, %zu scans in %.1f s, mapper %s, %d regions%s",
+               opt.world.c_str(), opt.minutes, run.estimate.size(), run.wall_seconds, mapper.pipeline(),
+               mapper.region_count(), dpcr::output::TrackingSummary(metrics).c_str());
+  if (metrics.contains("accuracy")) {
+    std::fprintf(stderr, ", LocErr_ave %.3f m, ATE %.3f m, max %.3f m", metrics["accuracy"]["loc_err_ave_m"].get<double>(),
+                 metrics["accuracy"]["ate_rmse_m"].get<double>(), metrics["accuracy"]["max_err_m"].get<double>());
+  }
+  if (!opt.load_map.empty()) std::fprintf(stderr, ", loaded %s", opt.load_map.c_str());
+  if (!opt.save_map.empty()) std::fprintf(stderr, ", map saved to %s (%zu bytes)", opt.save_map.c_str(), mapper.map_file_bytes());
+  std::fprintf(stderr, " -> %s/\n", opt.out.c_str());
+  const std::string warning = dpcr::output::TrackingWarning(metrics);
+  if (!warning.empty()) std::fprintf(stderr, "dpcr-sim: %s\n", warning.c_str());
+}
 
 // What was simulated: metrics.json "input".
 nlohmann::json InputMetrics(const Options& opt, const dpcr::sim::Simulation& sim) {
   const dpcr::sim::Pose2d& start = sim.start_pose();
-  return {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed},
+  return {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed}, {"heading", opt.heading},
           {"plan", opt.fixed_plan ? "fixed" : "varied by the seed"}, {"start_pose_in_world", {start.x, start.y, start.theta}},
           {"slip_events", sim.slip_events()}, {"coverage_tours", sim.tours_completed()}};
 }
@@ -60,6 +79,7 @@ int Run(const Options& opt) {
   config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
+  config.front_end.gyro_heading = opt.heading == "gyro";
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));
   // A second session: the saved map, the robot at a known pose in its frame (the world's start
@@ -114,18 +134,7 @@ int Run(const Options& opt) {
   if (!opt.save_map.empty()) dpcr::output::SaveMapFile(mapper, opt.save_map);
   dpcr::apps::WriteScanTimes(opt.scan_times, run);
 
-  std::fprintf(stderr, "dpcr-sim: %s, %.0f min, %zu scans in %.1f s, mapper %s, %d regions%s",
-               opt.world.c_str(), opt.minutes, run.estimate.size(), run.wall_seconds, mapper.pipeline(),
-               mapper.region_count(), dpcr::output::TrackingSummary(metrics).c_str());
-  if (metrics.contains("accuracy")) {
-    std::fprintf(stderr, ", LocErr_ave %.3f m, ATE %.3f m, max %.3f m", metrics["accuracy"]["loc_err_ave_m"].get<double>(),
-                 metrics["accuracy"]["ate_rmse_m"].get<double>(), metrics["accuracy"]["max_err_m"].get<double>());
-  }
-  if (!opt.load_map.empty()) std::fprintf(stderr, ", loaded %s", opt.load_map.c_str());
-  if (!opt.save_map.empty()) std::fprintf(stderr, ", map saved to %s (%zu bytes)", opt.save_map.c_str(), mapper.map_file_bytes());
-  std::fprintf(stderr, " -> %s/\n", opt.out.c_str());
-  const std::string warning = dpcr::output::TrackingWarning(metrics);
-  if (!warning.empty()) std::fprintf(stderr, "dpcr-sim: %s\n", warning.c_str());
+  PrintSummary(opt, mapper, run, metrics);
   return 0;
 }
 
@@ -152,6 +161,8 @@ int main(int argc, char** argv) {
   app.add_option("--region-width", opt.region_width_m, "region width S in metres (default: the configuration's, 4 m)")
       ->check(CLI::PositiveNumber);
   app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");
+  app.add_option("--heading", opt.heading, "the prediction's heading increment: wheels, or the integrated gyro (wheels keep the translation)")
+      ->check(CLI::IsMember({"wheels", "gyro"}))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   if (opt.out.empty()) opt.out = "out/" + std::filesystem::path(opt.world).stem().string();
   try {
