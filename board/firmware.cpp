@@ -68,7 +68,12 @@ bool Firmware::Start() {
     return false;
   }
   mapper_ = std::make_unique<BoardMapper>();
-  if (mapper_->Init(MapperConfig{}) != Status::kOk) {
+  MapperConfig mapper_config;
+  DeviceOptions device;
+  device.max_range_m = config_.max_range_m;
+  device.laser_offset_m = config_.laser_offset_m;
+  device.ApplyTo(&mapper_config.lidar);
+  if (mapper_->Init(mapper_config) != Status::kOk) {
     std::fprintf(log_, "dpcr-firmware: error: mapper configuration rejected\n");
     return false;
   }

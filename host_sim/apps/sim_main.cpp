@@ -91,7 +91,10 @@ int Run(const Options& opt) {
   std::unique_ptr<dpcr::DeviceEmitter> emitter;
   if (!opt.emit_device.empty()) {
     std::filesystem::create_directories(opt.emit_device);
-    emitter = std::make_unique<dpcr::DeviceEmitter>();
+    dpcr::DeviceFilesConfig files;
+    files.max_range_m = config.lidar.max_range_m;
+    files.laser_offset_m = config.lidar.mount.x;  // dpcr-sim's lidar faces forward on the robot's axis
+    emitter = std::make_unique<dpcr::DeviceEmitter>(files);
     std::string error;
     if (!emitter->Open(opt.emit_device, &error)) throw std::runtime_error(error);
   }

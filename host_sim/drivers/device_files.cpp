@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include <fstream>
+#include <nlohmann/json.hpp>
+
 #include "hal/ld06_emitter.hpp"
 
 namespace dpcr {
@@ -62,11 +65,51 @@ void DeviceEmitter::AddOdometry(const OdometrySample& sample) {
   can_.push_back(r);
 }
 
+bool WriteDeviceDescription(const std::string& path, const DeviceOptions& o, const std::string& lidar,
+                            std::string* error) {
+  const nlohmann::json j = {{"lidar", lidar},
+                            {"angle_sign", o.angle_sign},
+                            {"wheel_radius_m", o.wheels.wheel_radius_m},
+                            {"track_width_m", o.wheels.track_width_m},
+                            {"ticks_per_rev", o.wheels.ticks_per_rev},
+                            {"max_range_m", o.max_range_m},
+                            {"laser_offset_m", o.laser_offset_m}};
+  std::ofstream out(path);
+  out << j.dump(2) << "\n";
+  if (!out) *error = path + ": write failed";
+  return static_cast<bool>(out);
+}
+
+bool ReadDeviceDescription(const std::string& path, DeviceOptions* o, std::string* lidar, std::string* error) {
+  std::ifstream in(path);
+  if (!in) return true;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    if (j.contains("lidar")) *lidar = j["lidar"].get<std::string>();
+    if (j.contains("angle_sign")) o->angle_sign = j["angle_sign"].get<float>() < 0.0f ? -1.0f : 1.0f;
+    if (j.contains("wheel_radius_m")) o->wheels.wheel_radius_m = j["wheel_radius_m"].get<float>();
+    if (j.contains("track_width_m")) o->wheels.track_width_m = j["track_width_m"].get<float>();
+    if (j.contains("ticks_per_rev")) o->wheels.ticks_per_rev = j["ticks_per_rev"].get<float>();
+    if (j.contains("max_range_m")) o->max_range_m = j["max_range_m"].get<float>();
+    if (j.contains("laser_offset_m")) o->laser_offset_m = j["laser_offset_m"].get<float>();
+  } catch (const nlohmann::json::exception& e) {
+    *error = path + ": " + e.what();
+    return false;
+  }
+  return true;
+}
+
 bool DeviceEmitter::Close(std::string* error) {
   if (!uart_.Close()) {
     *error = dir_ + "/lidar.uart: write failed";
     return false;
   }
+  DeviceOptions options;
+  options.wheels = config_.wheels;
+  options.angle_sign = config_.angle_map.angle_sign;
+  options.max_range_m = config_.max_range_m;
+  options.laser_offset_m = config_.laser_offset_m;
+  if (!WriteDeviceDescription(dir_ + "/device.json", options, "ld06", error)) return false;
   return WriteCandumpLog(dir_ + "/wheels.log", can_, error);
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/front_end/odometry.hpp"
+#include "hal/device_options.hpp"
 #include "hal/device_pipeline.hpp"
 #include "hal/diff_drive_odometry.hpp"
 #include "hal/lidar_stream.hpp"
@@ -23,7 +24,17 @@ struct DeviceFilesConfig {
   LidarAngleMap angle_map{1.0f, 0.0f};
   DiffDriveConfig wheels{0.035f, 0.235f, 4096.0f};
   std::string can_interface = "can0";
+  // Written into DIR/device.json with the above (the lidar's range limit and mount).
+  float max_range_m = LidarConfig{}.max_range_m;
+  float laser_offset_m = 0.0f;
 };
+
+// DIR/device.json: the device options a recording was made with (hal/device_options.hpp) and
+// its lidar ("ld06" / "xv11"). Read: fields present override `options` / `lidar`; false with
+// `error` when the file is unreadable or malformed (a missing file is no error: nothing changes).
+bool WriteDeviceDescription(const std::string& path, const DeviceOptions& options, const std::string& lidar,
+                            std::string* error);
+bool ReadDeviceDescription(const std::string& path, DeviceOptions* options, std::string* lidar, std::string* error);
 
 // Writes DIR/lidar.uart and DIR/wheels.log (DeviceEmitter::Open/Close). Scans become LD06
 // packets, one capture chunk per packet at its arrival time; odometry poses become wheel ticks
