@@ -85,6 +85,9 @@ class Firmware {
   void PrintSummary();
 
  private:
+  // The lidar stream ended (or the firmware is finishing): its last revolution, once.
+  void FlushLidar();
+  bool lidar_flushed_ = false;
   class MapperSink;
   struct SaveResult;
   SaveResult SaveMap();

@@ -15,6 +15,13 @@ std::size_t DevicePipeline::FeedLidar(const std::uint8_t* data, std::size_t size
   return used;
 }
 
+void DevicePipeline::FlushLidar() {
+  if (!lidar_.Flush()) return;
+  lidar_.TakeScan(&scan_);
+  ++scans_;
+  sink_->AddScan(scan_);
+}
+
 void DevicePipeline::FeedAllLidar(const std::uint8_t* data, std::size_t size, std::int64_t arrival_us) {
   std::size_t used = 0;
   while (used < size) used += FeedLidar(data + used, size - used, arrival_us);

@@ -53,6 +53,9 @@ class DevicePipeline {
   std::size_t FeedLidar(const std::uint8_t* data, std::size_t size, std::int64_t arrival_us);
   // Feeds every byte (any number of revolutions).
   void FeedAllLidar(const std::uint8_t* data, std::size_t size, std::int64_t arrival_us);
+  // The lidar stream has ended (a recording's end): its last revolution goes to the sink when it
+  // is nearly complete (no wrap will come to close it).
+  void FlushLidar();
 
   // One CAN frame received at host time `received_us`. A ticks frame becomes an odometry sample
   // stamped on the wheel board's clock (anchored to host time at the first ticks frame); a gyro

@@ -130,9 +130,20 @@ void DeviceReplay::Run() {
   std::vector<std::uint8_t> pending(4096);
   ByteRead chunk;  // the UART bytes read and not yet fed: pending[fed .. chunk.size)
   std::size_t fed = 0;
+  bool flushed = false;
+  std::int64_t flush_after_us = INT64_MIN;
   for (;;) {
     const std::int64_t uart_t = fed < chunk.size ? chunk.stamp_us : uart_->next_stamp_us();
     const std::int64_t can_t = can_->next_stamp_us();
+    if (!flushed && uart_t == INT64_MAX) {
+      // The capture's last revolution (no wrap follows to close it), when the firmware's poll loop
+      // notices the end of its UART: after the frames of the next CAN instant, or at once.
+      if (flush_after_us == INT64_MIN) flush_after_us = can_t;
+      if (can_t > flush_after_us || can_t == INT64_MAX) {
+        pipeline_->FlushLidar();
+        flushed = true;
+      }
+    }
     if (can_t == INT64_MAX && uart_t == INT64_MAX) return;
     if (can_t <= uart_t) {  // frames first on a tie: the scan then sees the odometry of its instant
       const CanRead r = can_->Read();

@@ -61,7 +61,8 @@ class DeviceEmitter {
 };
 
 // Replays a UART capture + candump log in time order through a DevicePipeline into `sink`: a
-// scan comes after every odometry sample recorded up to the time its revolution closed.
+// scan comes after every odometry sample recorded up to the time its revolution closed; at the
+// end, the last revolution is flushed (DevicePipeline::FlushLidar).
 class DeviceReplay {
  public:
   DeviceReplay(const DeviceFilesConfig& files, const LidarStreamConfig& lidar, DeviceSink* sink);
