@@ -23,7 +23,7 @@ struct MapperCounters {
   std::uint32_t scans_empty = 0;             // no usable beam: the pose is the prediction
   std::uint32_t scans_fused_at_prediction = 0;  // rejected, prediction certain: inserted there
   std::uint32_t scans_kept_out_rejected = 0;  // rejected, prediction uncertain: inserted nowhere
-  std::uint32_t scans_without_odometry = 0;  // pose held: no odometry sample had arrived
+  std::uint32_t scans_without_odometry = 0;  // no odometry sample yet: constant-velocity prediction
   std::uint32_t odometry_samples = 0;
   std::uint32_t odometry_steps_back = 0;     // samples stamped earlier than their predecessor
   std::uint32_t beams_invalid = 0;           // no return, or outside [min, max] range

@@ -19,7 +19,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   counters_ = MapperCounters{};
   fe_counters_ = FrontEndCounters{};
   odometry_.Clear();
-  pose_ = submap_pose_ = last_odom_ = Pose2::Identity();
+  pose_ = submap_pose_ = last_odom_ = last_motion_ = Pose2::Identity();
   have_odom_ = have_scan_ = weak_match_ = have_gyro_yaw_ = false;
   last_gyro_yaw_ = 0.0f;
   search_grid_version_ = 0;
@@ -51,14 +51,20 @@ void FrontEnd::AddOdometry(const OdometrySample& sample) {
 Pose2 FrontEnd::Predict(std::int64_t stamp_us) {
   if (odometry_.empty()) {
     ++counters_.scans_without_odometry;
-    return pose_;
+    return pose_ * last_motion_;  // constant velocity: the last scan-to-scan motion again
   }
   const Pose2 odom = odometry_.PoseAt(stamp_us);
   Pose2 step = Between(last_odom_, odom);
   // With a gyro (FrontEndConfig::gyro_heading): the wheels give the translation, the gyro the turn.
   float yaw = 0.0f;
-  const bool gyro = config_.front_end.gyro_heading && odometry_.GyroYawAt(stamp_us, &yaw);
+  const bool use_gyro = config_.front_end.gyro_heading || !odometry_.newest().has_wheels;
+  const bool gyro = use_gyro && odometry_.GyroYawAt(stamp_us, &yaw);
   if (gyro && have_gyro_yaw_) step.theta = NormalizeAngle(yaw - last_gyro_yaw_);
+  // Without wheels (a gyro alone) the translation is the last scan-to-scan motion's (constant velocity).
+  if (!odometry_.newest().has_wheels) {
+    step.x = last_motion_.x;
+    step.y = last_motion_.y;
+  }
   have_gyro_yaw_ = gyro;
   last_gyro_yaw_ = yaw;
   const Pose2 predicted = have_odom_ ? pose_ * step : pose_;
@@ -71,6 +77,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   ++counters_.scans;
   (void)scan_marker_.Next();
   // 1. Prediction and de-skew.
+  const Pose2 previous = pose_;
   const Pose2 predicted = Predict(stamp_us);
   const ProjectedScan projected = ProjectScan(beams, stamp_us, config_.lidar, odometry_, s_.hits, s_.free_ends);
   counters_.beams_invalid += static_cast<std::uint32_t>(projected.invalid);
@@ -92,6 +99,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   } else {
     pose_ = predicted;
   }
+  last_motion_ = Between(previous, pose_);
   // 4a. The submap takes every scan (its own ring decides what leaves), but not a rejected one
   // placed by an uncertain prediction.
   if (!keep_out) {
@@ -141,7 +149,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
 }
 
 bool FrontEnd::UncertainPrediction(const Pose2& predicted) const {
-  return odometry_.empty() || consecutive_rejections_ > 0 ||
+  return odometry_.empty() || !odometry_.newest().has_wheels || consecutive_rejections_ > 0 ||
          std::fabs(NormalizeAngle(predicted.theta - pose_.theta)) > config_.front_end.uncertain_turn_rad;
 }
 

@@ -140,6 +140,7 @@ class FrontEnd {
   Pose2 pose_;         // robot in the submap frame
   Pose2 submap_pose_;  // submap frame in the world
   Pose2 last_odom_;
+  Pose2 last_motion_;  // the last scan-to-scan motion, in the earlier scan's frame
   static constexpr std::uint32_t kMinScansBetweenEarlyBuilds = 2;
   bool weak_match_ = false;  // the last first registration matched weakly (see FrontEndConfig)
   std::uint32_t search_grid_version_ = 0;  // submap_line_builds when the search grid was built

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hal/ld06_emitter.hpp"
+#include "hal/xv11_emitter.hpp"
 
 namespace dpcr {
 namespace {
@@ -17,11 +18,18 @@ constexpr std::int64_t kUnitsWrap = kWheelTimeWrapUnits;
 
 bool DeviceEmitter::Open(const std::string& dir, std::string* error) {
   dir_ = dir;
-  return uart_.Open(dir + "/lidar.uart", "ld06 baud 230400", error);
+  const bool xv11 = config_.lidar == LidarKind::kXv11;
+  return uart_.Open(dir + "/lidar.uart", xv11 ? "xv11 baud 115200" : "ld06 baud 230400", error);
 }
 
 bool DeviceEmitter::AddScan(const DeviceScan& scan) {
   bool ok = true;
+  if (config_.lidar == LidarKind::kXv11) {
+    Xv11EmittedPacket packets[kXv11PacketsPerRevolution];
+    EncodeXv11Revolution(scan.beams.data(), scan.beams.size(), scan.stamp_us, config_.angle_map, config_.xv11_rate_hz, packets);
+    for (const Xv11EmittedPacket& p : packets) ok = ok && uart_.Write(p.arrival_us, p.bytes, sizeof(p.bytes));
+    return ok;
+  }
   EmitLd06Revolution(scan, config_.angle_map, [this, &ok](const Ld06EmittedPacket& p) {
     ok = ok && uart_.Write(p.arrival_us, p.bytes, sizeof(p.bytes));
   });
@@ -29,6 +37,10 @@ bool DeviceEmitter::AddScan(const DeviceScan& scan) {
 }
 
 void DeviceEmitter::AddOdometry(const OdometrySample& sample) {
+  if (!sample.has_wheels) {
+    if (sample.has_gyro) AddGyro(sample);
+    return;
+  }
   if (started_) {
     // Increment in the previous robot frame -> arc length and heading change -> wheel travel.
     const Pose2 d = Between(last_pose_, sample.pose);
@@ -49,19 +61,24 @@ void DeviceEmitter::AddOdometry(const OdometrySample& sample) {
   f.right_ticks = static_cast<std::uint16_t>(std::llround(right_m_ * ticks_per_m) & 0xFFFF);
   f.sequence = ticks_seq_++;
   f.time_10us = static_cast<std::uint32_t>((sample.stamp_us / kWheelTimeUnitUs) % kUnitsWrap);
+  // The gyro frame before the ticks frame of the same instant, so the odometry sample carries the rate.
+  if (sample.has_gyro) AddGyro(sample);
   CandumpRecord r;
   r.stamp_us = sample.stamp_us;
   r.interface = config_.can_interface;
-  if (sample.has_gyro) {
-    // Before the ticks frame of the same instant, so the odometry sample carries the rate.
-    GyroFrame g;
-    g.yaw_rate_mrad_s = static_cast<std::int16_t>(std::lround(sample.gyro_yaw_rate * 1000.0f));
-    g.sequence = gyro_seq_++;
-    g.time_10us = f.time_10us;
-    r.frame = EncodeGyroFrame(g);
-    can_.push_back(r);
-  }
   r.frame = EncodeWheelFrame(f);
+  can_.push_back(r);
+}
+
+void DeviceEmitter::AddGyro(const OdometrySample& sample) {
+  GyroFrame g;
+  g.yaw_rate_mrad_s = static_cast<std::int16_t>(std::lround(sample.gyro_yaw_rate * 1000.0f));
+  g.sequence = gyro_seq_++;
+  g.time_10us = static_cast<std::uint32_t>((sample.stamp_us / kWheelTimeUnitUs) % kUnitsWrap);
+  CandumpRecord r;
+  r.stamp_us = sample.stamp_us;
+  r.interface = config_.can_interface;
+  r.frame = EncodeGyroFrame(g);
   can_.push_back(r);
 }
 
@@ -109,7 +126,8 @@ bool DeviceEmitter::Close(std::string* error) {
   options.angle_sign = config_.angle_map.angle_sign;
   options.max_range_m = config_.max_range_m;
   options.laser_offset_m = config_.laser_offset_m;
-  if (!WriteDeviceDescription(dir_ + "/device.json", options, "ld06", error)) return false;
+  const char* lidar = config_.lidar == LidarKind::kXv11 ? "xv11" : "ld06";
+  if (!WriteDeviceDescription(dir_ + "/device.json", options, lidar, error)) return false;
   return WriteCandumpLog(dir_ + "/wheels.log", can_, error);
 }
 

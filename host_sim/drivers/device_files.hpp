@@ -27,6 +27,9 @@ struct DeviceFilesConfig {
   // Written into DIR/device.json with the above (the lidar's range limit and mount).
   float max_range_m = LidarConfig{}.max_range_m;
   float laser_offset_m = 0.0f;
+  // The lidar's packets: LD06, or XV-11 (hal/xv11_emitter.hpp) turning at xv11_rate_hz.
+  LidarKind lidar = LidarKind::kLd06;
+  float xv11_rate_hz = 5.0f;
 };
 
 // DIR/device.json: the device options a recording was made with (hal/device_options.hpp) and
@@ -36,9 +39,10 @@ bool WriteDeviceDescription(const std::string& path, const DeviceOptions& option
                             std::string* error);
 bool ReadDeviceDescription(const std::string& path, DeviceOptions* options, std::string* lidar, std::string* error);
 
-// Writes DIR/lidar.uart and DIR/wheels.log (DeviceEmitter::Open/Close). Scans become LD06
-// packets, one capture chunk per packet at its arrival time; odometry poses become wheel ticks
-// (inverse diff-drive on each increment, cumulative rounding) plus a gyro frame when present.
+// Writes DIR/lidar.uart, DIR/wheels.log and DIR/device.json (DeviceEmitter::Open/Close). Scans
+// become LD06 or XV-11 packets, one capture chunk per packet at its arrival time; odometry poses
+// become wheel ticks (inverse diff-drive on each increment, cumulative rounding) plus a gyro frame
+// when present; a sample without wheels (has_wheels false) only its gyro frame.
 class DeviceEmitter {
  public:
   explicit DeviceEmitter(const DeviceFilesConfig& config = DeviceFilesConfig()) : config_(config) {}
@@ -48,6 +52,7 @@ class DeviceEmitter {
   bool Close(std::string* error);
 
  private:
+  void AddGyro(const OdometrySample& sample);
   DeviceFilesConfig config_;
   std::string dir_;
   UartCaptureWriter uart_;

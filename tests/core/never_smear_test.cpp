@@ -106,3 +106,24 @@ TEST_CASE("Without odometry a rejected scan is never fused") {
   REQUIRE(m->counters().scans_fused_at_prediction == 0);
   REQUIRE(Render(*m) == before);
 }
+
+TEST_CASE("With a gyro alone (no wheels) a rejected scan is never fused") {
+  auto m = std::make_unique<M>();
+  REQUIRE(m->Init(dpcr::MapperConfig{}) == dpcr::Status::kOk);  // gyro_heading off: no wheels, the gyro anyway
+  const dpcr::test::SyntheticRun<M> run(8.0f, 10, 450);
+  for (int k = 0; k <= 10; ++k) {
+    dpcr::OdometrySample s;
+    s.stamp_us = run.scans[0].stamp_us - 50000 + k * 10000;
+    s.has_wheels = false;
+    s.has_gyro = true;
+    s.gyro_yaw_rate = 0.0f;
+    m->AddOdometry(s);
+  }
+  (void)m->AddScan(run.scans[0]);
+  const std::vector<std::int16_t> before = Render(*m);
+  std::mt19937 rng(5);
+  (void)m->AddScan(Junk(run.scans[0].stamp_us + 50000, &rng));
+  REQUIRE(m->counters().scans_kept_out_rejected == 1);
+  REQUIRE(m->counters().scans_fused_at_prediction == 0);
+  REQUIRE(Render(*m) == before);
+}
