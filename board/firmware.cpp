@@ -68,7 +68,12 @@ bool Firmware::Start() {
     return false;
   }
   mapper_ = std::make_unique<BoardMapper>();
-  if (mapper_->Init(MapperConfig{}) != Status::kOk) {
+  MapperConfig mapper_config;
+  DeviceOptions device;
+  device.max_range_m = config_.max_range_m;
+  device.laser_offset_m = config_.laser_offset_m;
+  device.ApplyTo(&mapper_config.lidar);
+  if (mapper_->Init(mapper_config) != Status::kOk) {
     std::fprintf(log_, "dpcr-firmware: error: mapper configuration rejected\n");
     return false;
   }
@@ -93,6 +98,7 @@ bool Firmware::ServiceLidar() {
   if (r.status != IoStatus::kOk) {
     std::fprintf(log_, "dpcr-firmware: error: lidar UART %s: %s\n", config_.uart_device.c_str(),
                  r.status == IoStatus::kEndOfStream ? "end of file" : std::strerror(errno));
+    FlushLidar();
     return false;
   }
   pipeline_->FeedAllLidar(buffer_, r.size, r.stamp_us);
@@ -245,7 +251,14 @@ bool Firmware::WriteTrajectory(std::string* error) const {
   return true;
 }
 
+void Firmware::FlushLidar() {
+  if (lidar_flushed_ || !pipeline_) return;
+  lidar_flushed_ = true;
+  pipeline_->FlushLidar();  // the stream's last revolution: no wrap follows to close it
+}
+
 int Firmware::Finish(int exit_code) {
+  FlushLidar();
   PrintSummary();
   if (!config_.trajectory_path.empty()) {
     std::string error;

@@ -14,6 +14,7 @@
 #include "core/capacity.hpp"
 #include "core/mapper.hpp"
 #include "hal/device_pipeline.hpp"
+#include "hal/device_options.hpp"
 #include "hal/diff_drive_odometry.hpp"
 #include "hal/lidar_stream.hpp"
 #include "hal/ports.hpp"
@@ -29,6 +30,8 @@ struct FirmwareConfig {
   std::string can_interface = "can0";
   int can_fd = -1;                         // an already-open fd carrying struct can_frame (tests)
   DiffDriveConfig wheels;
+  float max_range_m = DeviceOptions{}.max_range_m;  // the device options (hal/device_options.hpp)
+  float laser_offset_m = 0.0f;
   std::string map_dir = ".";               // loads map.dpcr from there; saves map.dpcr, map.pgm + map.yaml
   int autosave_s = 60;                     // 0: only on exit
   int lidar_timeout_ms = 2000;             // no packet for this long: reported, exit 2
@@ -82,6 +85,9 @@ class Firmware {
   void PrintSummary();
 
  private:
+  // The lidar stream ended (or the firmware is finishing): its last revolution, once.
+  void FlushLidar();
+  bool lidar_flushed_ = false;
   class MapperSink;
   struct SaveResult;
   SaveResult SaveMap();

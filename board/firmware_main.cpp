@@ -13,6 +13,7 @@ void Usage() {
                "usage: dpcr-firmware [--uart DEV] [--baud N] [--lidar ld06|xv11] [--can IFACE]\n"
                "                     [--map-dir DIR] [--autosave S] [--lidar-timeout-ms MS]\n"
                "                     [--angle-sign 1|-1] [--wheel-radius M] [--track-width M] [--ticks-per-rev N]\n"
+               "                     [--max-range M] [--laser-offset M]   (defaults: hal/device_options.hpp)\n"
                "                     [--can-fd FD]   (an open fd carrying struct can_frame, for tests)\n"
                "                     [--lidar-timing arrival|device] (LD06: stamp packets by their own clock)\n"
                "                     [--trajectory FILE] (TUM, written at exit) [--record DIR] (received streams)\n");
@@ -79,6 +80,10 @@ int main(int argc, char** argv) {
       c.wheels.track_width_m = std::strtof(v, nullptr);
     } else if (a == "--ticks-per-rev") {
       c.wheels.ticks_per_rev = std::strtof(v, nullptr);
+    } else if (a == "--max-range") {
+      c.max_range_m = std::strtof(v, nullptr);
+    } else if (a == "--laser-offset") {
+      c.laser_offset_m = std::strtof(v, nullptr);
     } else {
       std::fprintf(stderr, "dpcr-firmware: error: unknown option %s\n", a.c_str());
       Usage();

@@ -80,6 +80,22 @@ struct FrontEndConfig {
   bool enable_registration = true;
   // Consecutive rejected first registrations before the status says "lost".
   int lost_after_rejections = 10;
+  // Never smear: a scan whose first registration was rejected while the prediction was uncertain
+  // goes into neither the submap nor the regional map (counted scans_not_inserted). Uncertain: no
+  // odometry sample yet, the previous scan's registration rejected too (a streak), odometry
+  // without wheels (a gyro alone: no translation), or a predicted turn since the last scan above
+  // uncertain_turn_rad. Rejected under a certain prediction (one
+  // miss with good odometry), the scan is fused at the predicted pose (scans_fused_at_prediction).
+  float uncertain_turn_rad = 0.15f;
+  // Kept out of everything, the submap could never track again: at every this-many consecutive
+  // rejections it restarts from the current scan at the predicted pose (the regional maps are
+  // untouched; the second registration then pulls the fresh submap onto them).
+  int submap_restart_after_rejections = 10;
+  // Heading increment of the prediction: false = the wheels'; true = the integrated gyro yaw when
+  // the odometry samples carry a rate (OdometrySample::has_gyro), the wheels keeping the
+  // translation (and the de-skew within a revolution). Samples without wheels (has_wheels false)
+  // always take the gyro's heading.
+  bool gyro_heading = false;
   // Odometry prior of the first registration (PosePrior units: unit-weight point residuals).
   float prior_info_xy = 20.0f;
   float prior_info_theta = 20.0f;

@@ -16,8 +16,14 @@ const char* ToString(MapperStatus status);
 
 struct MapperCounters {
   std::uint32_t scans = 0;
-  std::uint32_t scans_rejected = 0;          // not fused into the map
-  std::uint32_t scans_without_odometry = 0;  // pose held: no odometry sample had arrived
+  // Scans whose pose came from no registration: empty ones (scans_empty) and rejected first
+  // registrations (FrontEndCounters::first_rejected); each of the latter is either fused at the
+  // predicted pose (scans_fused_at_prediction) or kept out (scans_kept_out_rejected).
+  std::uint32_t scans_rejected = 0;
+  std::uint32_t scans_empty = 0;             // no usable beam: the pose is the prediction
+  std::uint32_t scans_fused_at_prediction = 0;  // rejected, prediction certain: inserted there
+  std::uint32_t scans_kept_out_rejected = 0;  // rejected, prediction uncertain: inserted nowhere
+  std::uint32_t scans_without_odometry = 0;  // no odometry sample yet: constant-velocity prediction
   std::uint32_t odometry_samples = 0;
   std::uint32_t odometry_steps_back = 0;     // samples stamped earlier than their predecessor
   std::uint32_t beams_invalid = 0;           // no return, or outside [min, max] range
@@ -25,9 +31,19 @@ struct MapperCounters {
   std::uint32_t region_pool_full = 0;        // scans that wanted a new region and got none
   std::uint32_t updates_out_of_box = 0;      // cell updates past a regional map's box
   std::uint32_t updates_dropped_pool_full = 0;
-  // Scans kept out of the regional maps: the robot was back in a known map after a loop and had
-  // not yet placed itself in it (no smeared copy of the room).
+  // Scans kept out of the regional maps (no smeared copy of the room): the robot was back in a
+  // known map after a loop and had not yet placed itself in it, or scans_kept_out_rejected.
   std::uint32_t scans_not_inserted = 0;
+  std::uint32_t submap_restarts = 0;         // after a long rejection streak (FrontEndConfig)
+  // Rejection streaks (consecutive rejected first registrations): the scans in them, the time
+  // they covered (each scan counts the time since the previous scan), the longest one.
+  std::uint32_t streak_scans = 0;
+  std::int64_t streak_us = 0;
+  std::uint32_t longest_streak_scans = 0;
+  std::int64_t longest_streak_us = 0;
+  // Scans after which the status was kLost, and the time they covered.
+  std::uint32_t lost_scans = 0;
+  std::int64_t lost_us = 0;
 };
 
 }  // namespace dpcr

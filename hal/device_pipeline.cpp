@@ -15,6 +15,13 @@ std::size_t DevicePipeline::FeedLidar(const std::uint8_t* data, std::size_t size
   return used;
 }
 
+void DevicePipeline::FlushLidar() {
+  if (!lidar_.Flush()) return;
+  lidar_.TakeScan(&scan_);
+  ++scans_;
+  sink_->AddScan(scan_);
+}
+
 void DevicePipeline::FeedAllLidar(const std::uint8_t* data, std::size_t size, std::int64_t arrival_us) {
   std::size_t used = 0;
   while (used < size) used += FeedLidar(data + used, size - used, arrival_us);
@@ -25,9 +32,22 @@ void DevicePipeline::FeedCan(const CanFrame& frame, std::int64_t received_us) {
   if (decoded == CanDecodeResult::kGyro) {
     gyro_ = wheels_.gyro();
     have_gyro_ = true;
+    // Two gyro frames without a ticks frame between them, and none ever: no wheel encoders. (A
+    // robot with wheels sends its ticks frame right after the gyro frame of the same instant.)
+    if (wheels_.counters().ticks_frames == 0 && ++gyro_frames_without_ticks_ >= 2) {
+      // No wheel encoders (yet): a gyro-only sample, so that the mapper still gets the turn.
+      OdometrySample sample;
+      sample.stamp_us = wheel_time_.ToHostUs(gyro_.device_time_us, received_us);
+      sample.has_wheels = false;
+      sample.has_gyro = true;
+      sample.gyro_yaw_rate = gyro_.yaw_rate_rad_s;
+      ++odometry_samples_;
+      sink_->AddOdometry(sample);
+    }
     return;
   }
   if (decoded != CanDecodeResult::kTicks) return;
+  gyro_frames_without_ticks_ = 0;
   const std::int64_t stamp_us = wheel_time_.ToHostUs(wheels_.ticks().device_time_us, received_us);
   OdometrySample sample = odometry_.Update(wheels_.ticks(), stamp_us);
   sample.has_gyro = have_gyro_;

@@ -53,10 +53,14 @@ class DevicePipeline {
   std::size_t FeedLidar(const std::uint8_t* data, std::size_t size, std::int64_t arrival_us);
   // Feeds every byte (any number of revolutions).
   void FeedAllLidar(const std::uint8_t* data, std::size_t size, std::int64_t arrival_us);
+  // The lidar stream has ended (a recording's end): its last revolution goes to the sink when it
+  // is nearly complete (no wrap will come to close it).
+  void FlushLidar();
 
   // One CAN frame received at host time `received_us`. A ticks frame becomes an odometry sample
-  // stamped on the wheel board's clock (anchored to host time at the first ticks frame); a gyro
-  // frame only updates the rate the next samples carry. Other frames are counted and ignored.
+  // stamped on the wheel board's clock (anchored to host time at the first frame); a gyro frame
+  // updates the rate the next samples carry, and once two have come without a ticks frame, none
+  // ever (a robot without wheel encoders), each is a sample of its own (has_wheels false). Other frames are counted and ignored.
   void FeedCan(const CanFrame& frame, std::int64_t received_us);
 
   DevicePipelineCounters counters() const;
@@ -71,6 +75,7 @@ class DevicePipeline {
   DeviceTimeBase wheel_time_;
   GyroRate gyro_;
   bool have_gyro_ = false;
+  std::uint32_t gyro_frames_without_ticks_ = 0;
   DeviceScan scan_;
   std::uint32_t scans_ = 0;
   std::uint32_t odometry_samples_ = 0;

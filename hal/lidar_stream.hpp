@@ -45,6 +45,8 @@ class LidarStream {
   // (take it, then feed the rest). Returns the number of bytes consumed.
   std::size_t Feed(const std::uint8_t* data, std::size_t size, std::int64_t arrival_us);
   bool revolution_ready() const { return assembler_.revolution_ready(); }
+  // End of the stream: the last revolution, if nearly complete, becomes ready (ScanAssembler::Flush).
+  bool Flush() { return assembler_.Flush(); }
   template <int N>
   void TakeScan(Scan<N>* out, RevolutionInfo* info = nullptr) {
     assembler_.TakeScan(out, info);

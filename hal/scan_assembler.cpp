@@ -73,6 +73,13 @@ void ScanAssembler::AddPoint(float device_deg, float range_m, std::int64_t stamp
   Append(&revs_[current_], p);
 }
 
+bool ScanAssembler::Flush() {
+  if (!started_ || ready_ || revs_[current_].points.empty()) return false;
+  if (last_deg_ < 360.0f - config_.start_tolerance_deg) return false;
+  CloseRevolution();
+  return ready_;
+}
+
 bool ScanAssembler::Add(const LidarPacket& packet) {
   const bool was_ready = ready_;
   if (started_ && packet.count > 0 && packet.stamp_us - last_packet_us_ > config_.max_silence_us) {

@@ -61,6 +61,9 @@ class ScanAssembler {
   // (the packet's points past the wrap start the next revolution).
   bool Add(const LidarPacket& packet);
   bool revolution_ready() const { return ready_; }
+  // At the end of a stream no wrap follows to close the revolution in progress: this closes it
+  // when it got within start_tolerance_deg of a full turn (the start rule's mirror); true then.
+  bool Flush();
 
   // Moves the ready revolution into `out` (decimated evenly to N beams when longer).
   template <int N>

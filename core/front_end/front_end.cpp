@@ -19,10 +19,13 @@ Status FrontEnd::Init(const MapperConfig& config) {
   counters_ = MapperCounters{};
   fe_counters_ = FrontEndCounters{};
   odometry_.Clear();
-  pose_ = submap_pose_ = last_odom_ = Pose2::Identity();
-  have_odom_ = have_scan_ = weak_match_ = false;
+  pose_ = submap_pose_ = last_odom_ = last_motion_ = Pose2::Identity();
+  have_odom_ = have_scan_ = weak_match_ = have_gyro_yaw_ = false;
+  last_gyro_yaw_ = 0.0f;
   search_grid_version_ = 0;
   consecutive_rejections_ = 0;
+  last_stamp_us_ = -1;
+  streak_us_ = 0;
   InvalidateRegionReference();
   scans_since_submap_lines_ = scans_since_second_ = second_registrations_since_region_lines_ = 0;
   scan_marker_.Reset();
@@ -48,10 +51,23 @@ void FrontEnd::AddOdometry(const OdometrySample& sample) {
 Pose2 FrontEnd::Predict(std::int64_t stamp_us) {
   if (odometry_.empty()) {
     ++counters_.scans_without_odometry;
-    return pose_;
+    return pose_ * last_motion_;  // constant velocity: the last scan-to-scan motion again
   }
   const Pose2 odom = odometry_.PoseAt(stamp_us);
-  const Pose2 predicted = have_odom_ ? pose_ * Between(last_odom_, odom) : pose_;
+  Pose2 step = Between(last_odom_, odom);
+  // With a gyro (FrontEndConfig::gyro_heading): the wheels give the translation, the gyro the turn.
+  float yaw = 0.0f;
+  const bool use_gyro = config_.front_end.gyro_heading || !odometry_.newest().has_wheels;
+  const bool gyro = use_gyro && odometry_.GyroYawAt(stamp_us, &yaw);
+  if (gyro && have_gyro_yaw_) step.theta = NormalizeAngle(yaw - last_gyro_yaw_);
+  // Without wheels (a gyro alone) the translation is the last scan-to-scan motion's (constant velocity).
+  if (!odometry_.newest().has_wheels) {
+    step.x = last_motion_.x;
+    step.y = last_motion_.y;
+  }
+  have_gyro_yaw_ = gyro;
+  last_gyro_yaw_ = yaw;
+  const Pose2 predicted = have_odom_ ? pose_ * step : pose_;
   last_odom_ = odom;
   have_odom_ = true;
   return predicted;
@@ -61,24 +77,35 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   ++counters_.scans;
   (void)scan_marker_.Next();
   // 1. Prediction and de-skew.
+  const Pose2 previous = pose_;
   const Pose2 predicted = Predict(stamp_us);
   const ProjectedScan projected = ProjectScan(beams, stamp_us, config_.lidar, odometry_, s_.hits, s_.free_ends);
   counters_.beams_invalid += static_cast<std::uint32_t>(projected.invalid);
   if (projected.hits == 0 && projected.free_ends == 0) {
     ++counters_.scans_rejected;
+    ++counters_.scans_empty;
     pose_ = predicted;
     return Status::kNotEnoughData;
   }
   // 2. First registration against the submap (not for the very first scan: nothing to match).
+  bool keep_out = false;
+  const std::int64_t since_last_us = last_stamp_us_ >= 0 ? stamp_us - last_stamp_us_ : 0;
+  last_stamp_us_ = stamp_us;
   if (config_.front_end.enable_registration && s_.submap->size() > 0) {
     RebuildSubmapReferenceIfDue();
+    const bool uncertain = UncertainPrediction(predicted);
     RegisterScan(projected.hits, predicted);
+    keep_out = AfterFirstRegistration(uncertain, since_last_us, projected.hits);
   } else {
     pose_ = predicted;
   }
-  // 4a. The submap takes every scan (its own ring decides what leaves).
-  (void)s_.submap->Add(pose_, Span<const Point2>(s_.hits.data(), projected.hits));
-  ++scans_since_submap_lines_;
+  last_motion_ = Between(previous, pose_);
+  // 4a. The submap takes every scan (its own ring decides what leaves), but not a rejected one
+  // placed by an uncertain prediction.
+  if (!keep_out) {
+    (void)s_.submap->Add(pose_, Span<const Point2>(s_.hits.data(), projected.hits));
+    ++scans_since_submap_lines_;
+  }
   // 3. Regions, and the second registration.
   const Pose2 world = pose();
   if (have_scan_) path_m_ += std::hypot(world.x - last_world_.x, world.y - last_world_.y);
@@ -100,12 +127,13 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
              ++scans_since_second_ >= static_cast<std::uint32_t>(config_.front_end.second_registration_period)) {
     SecondRegistration();
   }
-  // 4b. Once into the current regional map (not while the robot cannot place itself in it).
-  if (lost_in_region_) {
+  // 4b. Once into the current regional map (not while the robot cannot place itself in it, nor
+  // a scan kept out above).
+  if (lost_in_region_ || keep_out) {
     ++counters_.scans_not_inserted;
     // Its pose is still known in the anchor region's frame.
-    last_scan_region_ = anchor_region_;
-    last_scan_in_region_ = Between(regions_[anchor_region_].anchor, pose());
+    last_scan_region_ = anchor_region_ >= 0 ? anchor_region_ : regions_.current();
+    if (last_scan_region_ >= 0) last_scan_in_region_ = Between(regions_[last_scan_region_].anchor, pose());
   } else {
     InsertIntoRegion(projected);
   }
@@ -113,7 +141,46 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   StepBackEnd();
   last_world_ = pose();
   UpdateStatus();
+  if (status_ == MapperStatus::kLost) {
+    ++counters_.lost_scans;
+    counters_.lost_us += since_last_us;
+  }
   return Status::kOk;
+}
+
+bool FrontEnd::UncertainPrediction(const Pose2& predicted) const {
+  return odometry_.empty() || !odometry_.newest().has_wheels || consecutive_rejections_ > 0 ||
+         std::fabs(NormalizeAngle(predicted.theta - pose_.theta)) > config_.front_end.uncertain_turn_rad;
+}
+
+bool FrontEnd::AfterFirstRegistration(bool uncertain, std::int64_t since_last_us, std::size_t hits) {
+  if (consecutive_rejections_ == 0) {
+    streak_us_ = 0;
+    return false;
+  }
+  ++counters_.scans_rejected;
+  ++counters_.streak_scans;
+  counters_.streak_us += since_last_us;
+  streak_us_ += since_last_us;
+  const std::uint32_t streak = static_cast<std::uint32_t>(consecutive_rejections_);
+  if (streak > counters_.longest_streak_scans) counters_.longest_streak_scans = streak;
+  if (streak_us_ > counters_.longest_streak_us) counters_.longest_streak_us = streak_us_;
+  if (!uncertain) {
+    ++counters_.scans_fused_at_prediction;
+    return false;
+  }
+  ++counters_.scans_kept_out_rejected;
+  // Kept out of everything, the submap would never track again: every so many rejections in a
+  // row, a fresh submap starts from this scan at the predicted pose (regional maps untouched; the
+  // scan stays out of them).
+  if (consecutive_rejections_ % config_.front_end.submap_restart_after_rejections == 0) {
+    const FrontEndConfig& f = config_.front_end;
+    s_.submap->Reset(config_.grid, f.submap_scans, f.submap_miss_range_m);
+    (void)s_.submap->Add(pose_, Span<const Point2>(s_.hits.data(), hits));
+    scans_since_submap_lines_ = static_cast<std::uint32_t>(f.submap_line_period);  // rebuild next scan
+    ++counters_.submap_restarts;
+  }
+  return true;
 }
 
 void FrontEnd::RebuildSubmapReferenceIfDue() {

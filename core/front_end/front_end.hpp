@@ -102,6 +102,11 @@ class FrontEnd {
   DPCR_STAGE void BuildRegionReference(const int (&maps)[2], int n);
   DPCR_STAGE RegistrationResult RegisterSubmap(RegionalMap& r);
   void InsertIntoRegion(const ProjectedScan& projected);
+  // Never smear (FrontEndConfig::uncertain_turn_rad): whether a rejection now would leave the
+  // scan placed by an uncertain prediction; after RegisterScan, the streak counters, and true when
+  // the scan stays out of the maps (restarting the submap from it after a long streak).
+  bool UncertainPrediction(const Pose2& predicted) const;
+  bool AfterFirstRegistration(bool uncertain, std::int64_t since_last_us, std::size_t hits);
   void RebuildSubmapReferenceIfDue();
   DPCR_STAGE void RefitSubmapLines();
   void EnterRegion(bool first);
@@ -135,12 +140,17 @@ class FrontEnd {
   Pose2 pose_;         // robot in the submap frame
   Pose2 submap_pose_;  // submap frame in the world
   Pose2 last_odom_;
+  Pose2 last_motion_;  // the last scan-to-scan motion, in the earlier scan's frame
   static constexpr std::uint32_t kMinScansBetweenEarlyBuilds = 2;
   bool weak_match_ = false;  // the last first registration matched weakly (see FrontEndConfig)
   std::uint32_t search_grid_version_ = 0;  // submap_line_builds when the search grid was built
   bool have_odom_ = false;
+  bool have_gyro_yaw_ = false;  // last_gyro_yaw_ holds the gyro yaw at the last prediction
+  float last_gyro_yaw_ = 0.0f;
   bool have_scan_ = false;
   int consecutive_rejections_ = 0;
+  std::int64_t last_stamp_us_ = -1;  // the last non-empty scan's stamp (-1: none yet)
+  std::int64_t streak_us_ = 0;       // time covered by the current rejection streak
   int reference_maps_[2] = {-1, -1};  // whose lines region_reference holds (-1: none)
   std::uint32_t scans_since_submap_lines_ = 0;
   std::uint32_t scans_since_second_ = 0;

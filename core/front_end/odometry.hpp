@@ -11,6 +11,8 @@ namespace dpcr {
 struct OdometrySample {
   std::int64_t stamp_us = 0;
   Pose2 pose;                  // wheel pose in the odometry frame (drifts; only increments matter)
+  // false: a gyro-only robot (no wheel encoders): `pose` is constant, only the rate tells motion.
+  bool has_wheels = true;
   bool has_gyro = false;
   float gyro_yaw_rate = 0.0f;  // rad/s, when has_gyro
 };

@@ -1,5 +1,8 @@
 #include "core/front_end/odometry_buffer.hpp"
 
+#include <cmath>
+#include <limits>
+
 namespace dpcr {
 
 Pose2 Interpolate(const Pose2& a, const Pose2& b, float t) {
@@ -11,9 +14,46 @@ void OdometryBuffer::Add(const OdometrySample& sample) {
   if (!samples_.empty() && sample.stamp_us < samples_.back().stamp_us) {
     ++steps_back_;
     samples_.clear();
+    gyro_yaw_.clear();
   }
-  if (samples_.full()) samples_.pop_front();
+  float yaw = std::numeric_limits<float>::quiet_NaN();
+  if (sample.has_gyro) {
+    const bool integrate = !samples_.empty() && !std::isnan(gyro_yaw_.back());
+    if (integrate) {
+      const float dt = static_cast<float>(sample.stamp_us - samples_.back().stamp_us) * 1e-6f;
+      yaw_ = NormalizeAngle(yaw_ + sample.gyro_yaw_rate * dt);
+    }
+    yaw = yaw_;
+  }
+  if (samples_.full()) {
+    samples_.pop_front();
+    gyro_yaw_.pop_front();
+  }
   (void)samples_.push_back(sample);
+  (void)gyro_yaw_.push_back(yaw);
+}
+
+bool OdometryBuffer::GyroYawAt(std::int64_t stamp_us, float* yaw) const {
+  const std::size_t n = samples_.size();
+  if (n == 0 || stamp_us < samples_[0].stamp_us) return false;
+  const OdometrySample& newest = samples_[n - 1];
+  if (stamp_us >= newest.stamp_us) {
+    if (std::isnan(gyro_yaw_[n - 1])) return false;
+    std::int64_t ahead = stamp_us - newest.stamp_us;
+    if (ahead > kMaxExtrapolationUs) ahead = kMaxExtrapolationUs;
+    *yaw = NormalizeAngle(gyro_yaw_[n - 1] + newest.gyro_yaw_rate * static_cast<float>(ahead) * 1e-6f);
+    return true;
+  }
+  for (std::size_t i = n - 1; i-- > 0;) {
+    if (samples_[i].stamp_us > stamp_us) continue;
+    const float a = gyro_yaw_[i], b = gyro_yaw_[i + 1];
+    if (std::isnan(a) || std::isnan(b)) return false;
+    const std::int64_t span = samples_[i + 1].stamp_us - samples_[i].stamp_us;
+    const float t = span > 0 ? static_cast<float>(stamp_us - samples_[i].stamp_us) / static_cast<float>(span) : 1.0f;
+    *yaw = NormalizeAngle(a + t * NormalizeAngle(b - a));
+    return true;
+  }
+  return false;
 }
 
 Pose2 OdometryBuffer::PoseAt(std::int64_t stamp_us) const {

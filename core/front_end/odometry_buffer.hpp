@@ -14,7 +14,11 @@ namespace dpcr {
 class OdometryBuffer {
  public:
   void Add(const OdometrySample& sample);
-  void Clear() { samples_.clear(); }
+  void Clear() {
+    samples_.clear();
+    gyro_yaw_.clear();
+    yaw_ = 0.0f;
+  }
   bool empty() const { return samples_.empty(); }
   const OdometrySample& newest() const { return samples_.back(); }
 
@@ -24,6 +28,13 @@ class OdometryBuffer {
 
   std::uint32_t steps_back() const { return steps_back_; }
 
+  // The gyro's integrated yaw (rad, wrapped) at `stamp_us`: each sample's gyro_yaw_rate is taken
+  // as the mean rate over the interval that ends at it (as the wheel board and dpcr-sim send it).
+  // Interpolated between samples; after the newest, extrapolated at its rate like PoseAt. False
+  // when the bracketing samples carry no gyro rate, or `stamp_us` is before the oldest sample.
+  // Only differences between two stamps mean something.
+  bool GyroYawAt(std::int64_t stamp_us, float* yaw) const;
+
   // 64 samples at 100 Hz cover 0.64 s, more than one revolution of a 5-10 Hz lidar.
   static constexpr int kCapacity = 64;
   static constexpr std::int64_t kMaxExtrapolationUs = 100000;
@@ -32,6 +43,8 @@ class OdometryBuffer {
 
  private:
   RingBuffer<OdometrySample, kCapacity> samples_;
+  RingBuffer<float, kCapacity> gyro_yaw_;  // integrated yaw at each sample (NaN: no gyro)
+  float yaw_ = 0.0f;
   std::uint32_t steps_back_ = 0;
 };
 

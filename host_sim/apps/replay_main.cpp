@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <set>
 #include <vector>
 
 #include "core/mapper.hpp"
@@ -30,7 +31,7 @@ struct Options {
   std::string candump;
   std::string lidar = "ld06";
   std::string lidar_timing = "arrival";
-  float angle_sign = 1.0f;
+  float angle_sign = -1.0f;
   bool odometry_only = false;
   bool front_end_only = false;
   std::string relations;
@@ -44,7 +45,45 @@ struct Options {
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
   std::string scan_times;
+  std::string heading = "wheels";  // FrontEndConfig::gyro_heading
+  float wheel_radius_m = 0.0f;
+  float track_width_m = 0.0f;
+  float ticks_per_rev = 0.0f;
+  std::set<std::string> given;  // the options on the command line
 };
+
+// --uart: the device options: the firmware's defaults (hal/device_options.hpp), then the
+// recording's device.json beside the capture, then the command line. The lidar kind likewise.
+dpcr::DeviceOptions DeviceOptionsFor(const Options& opt, std::string* lidar, std::string* description) {
+  dpcr::DeviceOptions d;
+  *lidar = "ld06";
+  *description = (std::filesystem::path(opt.uart).parent_path() / "device.json").string();
+  std::string error;
+  if (!dpcr::ReadDeviceDescription(*description, &d, lidar, &error)) throw std::runtime_error(error);
+  if (!std::filesystem::exists(*description)) description->clear();
+  const auto given = [&](const char* name) { return opt.given.count(name) > 0; };
+  if (given("--lidar")) *lidar = opt.lidar;
+  if (given("--angle-sign")) d.angle_sign = opt.angle_sign;
+  if (given("--wheel-radius")) d.wheels.wheel_radius_m = opt.wheel_radius_m;
+  if (given("--track-width")) d.wheels.track_width_m = opt.track_width_m;
+  if (given("--ticks-per-rev")) d.wheels.ticks_per_rev = opt.ticks_per_rev;
+  if (given("--max-range")) d.max_range_m = opt.max_range_m;
+  if (given("--laser-offset")) d.laser_offset_m = opt.laser_offset_m;
+  if (d.wheels.Validate() != dpcr::Status::kOk) throw std::runtime_error("invalid wheel geometry (radius, track, ticks)");
+  return d;
+}
+
+// Options that one input does not use are an error, not silently ignored.
+void CheckApplicable(const Options& opt) {
+  const std::vector<std::string> device_only = {"--candump",     "--lidar",       "--lidar-timing", "--angle-sign",
+                                                "--wheel-radius", "--track-width", "--ticks-per-rev", "--heading"};
+  const std::vector<std::string> carmen_only = {"--odometry", "--relations"};
+  for (const std::string& name : opt.uart.empty() ? device_only : carmen_only) {
+    if (opt.given.count(name) == 0) continue;
+    throw std::runtime_error(name + " does not apply to " + (opt.uart.empty() ? "--carmen" : "--uart") +
+                             " (only to " + (opt.uart.empty() ? "--uart" : "--carmen") + ")");
+  }
+}
 
 // --load-map after Init: a second session in the saved map's frame, at the given start pose.
 template <class MapperType>
@@ -62,9 +101,10 @@ void SaveMapIfAsked(const Options& opt, const MapperType& mapper) {
 }
 
 void PrintSummary(const dpcr::output::RunRecord& run, const nlohmann::json& metrics, const std::string& out) {
-  std::fprintf(stderr, "dpcr-replay: %zu scans in %.2f s (%.0f scans/s), mapper %s, %d regions",
+  std::fprintf(stderr, "dpcr-replay: %zu scans in %.2f s (%.0f scans/s), mapper %s, %d regions%s",
                run.estimate.size(), run.wall_seconds, static_cast<double>(run.estimate.size()) / run.wall_seconds,
-               metrics["mapper"].get<std::string>().c_str(), metrics["regions"].get<int>());
+               metrics["mapper"].get<std::string>().c_str(), metrics["regions"].get<int>(),
+               dpcr::output::TrackingSummary(metrics).c_str());
   if (metrics.contains("relations")) {
     const auto& r = metrics["relations"];
     std::fprintf(stderr, ", relations %.3f +- %.3f m / %.2f +- %.2f deg (%d matched, %d unmatched)",
@@ -72,6 +112,8 @@ void PrintSummary(const dpcr::output::RunRecord& run, const nlohmann::json& metr
                  r["rot_std_deg"].get<double>(), r["matched"].get<int>(), r["unmatched"].get<int>());
   }
   std::fprintf(stderr, " -> %s/\n", out.c_str());
+  const std::string warning = dpcr::output::TrackingWarning(metrics);
+  if (!warning.empty()) std::fprintf(stderr, "dpcr-replay: %s\n", warning.c_str());
 }
 
 // The mapper for a CARMEN log: the lidar mount from --laser-offset, else from the log's PARAM.
@@ -184,10 +226,14 @@ template <class Profile>
 int ReplayDevice(const Options& opt) {
   using MapperType = dpcr::Mapper<Profile>;
   static MapperType mapper;
+  std::string lidar_name, description;
+  const dpcr::DeviceOptions device = DeviceOptionsFor(opt, &lidar_name, &description);
   dpcr::DeviceFilesConfig files;
-  files.angle_map.angle_sign = opt.angle_sign;
+  files.angle_map = device.angle_map();
+  files.wheels = device.wheels;
   dpcr::LidarStreamConfig lidar;
-  lidar.kind = opt.lidar == "xv11" ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06;
+  if (lidar_name != "ld06" && lidar_name != "xv11") throw std::runtime_error(description + ": unknown lidar " + lidar_name);
+  lidar.kind = lidar_name == "xv11" ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06;
   lidar.assembler.angle_map = files.angle_map;
   lidar.timing = opt.lidar_timing == "device" ? dpcr::LidarTiming::kDeviceClock : dpcr::LidarTiming::kArrival;
   dpcr::output::RunRecord run;
@@ -196,8 +242,10 @@ int ReplayDevice(const Options& opt) {
   std::string error;
   if (!replay.Open(opt.uart, opt.candump, &error)) throw std::runtime_error(error);
   dpcr::MapperConfig config;
+  device.ApplyTo(&config.lidar);
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
+  config.front_end.gyro_heading = opt.heading == "gyro";
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));
   LoadMapIfAsked(opt, &mapper);
@@ -209,7 +257,12 @@ int ReplayDevice(const Options& opt) {
   dpcr::output::FinalizeTrajectory(mapper, &run);
   nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
   const auto c = replay.counters();
-  metrics["input"] = {{"uart", opt.uart}, {"candump", opt.candump}, {"lidar", opt.lidar},
+  metrics["device"] = {{"description", description.empty() ? "none (defaults)" : description},
+                       {"angle_sign", device.angle_sign}, {"wheel_radius_m", device.wheels.wheel_radius_m},
+                       {"track_width_m", device.wheels.track_width_m}, {"ticks_per_rev", device.wheels.ticks_per_rev},
+                       {"max_range_m", device.max_range_m}, {"laser_offset_m", device.laser_offset_m},
+                       {"heading", opt.heading}};
+  metrics["input"] = {{"uart", opt.uart}, {"candump", opt.candump}, {"lidar", lidar_name},
                       {"packets", c.lidar.packets}, {"bad_packets", c.lidar.bad_packets}, {"resyncs", c.lidar.resyncs},
                       {"discarded_bytes", c.lidar.discarded_bytes}, {"revolutions", c.lidar.revolutions},
                       {"gaps", c.lidar.gaps}, {"decimated", c.lidar.decimated}, {"odometry", c.odometry}};
@@ -233,15 +286,24 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"building", "vacuum"}));
   app.add_option("--odometry", opt.odometry, "odometry source: the pose logged with each scan, or ODOM lines")
       ->check(CLI::IsMember({"laser", "odom"}))->capture_default_str();
-  app.add_option("--max-range", opt.max_range_m, "ignore returns farther than this (m)")->capture_default_str();
-  app.add_option("--laser-offset", opt.laser_offset_m, "lidar ahead of the robot centre (m); default: the log's PARAM");
+  app.add_option("--max-range", opt.max_range_m, "ignore returns farther than this (m); default: 20 for --carmen, "
+                 "device.json or dpcr-firmware's for --uart");
+  app.add_option("--laser-offset", opt.laser_offset_m, "lidar ahead of the robot centre (m); default: the log's PARAM (--carmen), "
+                 "device.json or 0 (--uart)");
   app.add_option("--uart", opt.uart, "lidar UART capture (docs/uart-capture-format.md)")->check(CLI::ExistingFile);
   app.add_option("--candump", opt.candump, "wheel-encoder CAN log (candump -l format)")->check(CLI::ExistingFile);
   app.add_option("--lidar", opt.lidar, "lidar protocol in the UART capture")->check(CLI::IsMember({"ld06", "xv11"}))->capture_default_str();
   app.add_option("--lidar-timing", opt.lidar_timing, "LD06 packet times: arrival (the capture's stamps) or device (the packets' own clock)")
       ->check(CLI::IsMember({"arrival", "device"}))->capture_default_str();
-  app.add_option("--angle-sign", opt.angle_sign, "+1: device angles counter-clockwise (dpcr-sim), -1: clockwise (an upright LD06)")
-      ->check(CLI::IsMember({1.0f, -1.0f}))->capture_default_str();
+  app.add_option("--angle-sign", opt.angle_sign, "+1: device angles counter-clockwise (dpcr-sim), -1: clockwise (an upright LD06); "
+                 "default: device.json beside the capture, else -1 (as dpcr-firmware)")
+      ->check(CLI::IsMember({1.0f, -1.0f}));
+  app.add_option("--wheel-radius", opt.wheel_radius_m, "--uart: wheel radius (m); default: device.json, else dpcr-firmware's")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--track-width", opt.track_width_m, "--uart: distance between the wheels (m); default: device.json, else dpcr-firmware's")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--ticks-per-rev", opt.ticks_per_rev, "--uart: encoder ticks per wheel revolution; default: device.json, else dpcr-firmware's")
+      ->check(CLI::PositiveNumber);
   app.add_flag("--odometry-only", opt.odometry_only, "map with dead reckoning only (for comparison)");
   app.add_flag("--front-end-only", opt.front_end_only, "map without the back end (no region graph, no loop closures; for comparison)");
   app.add_option("--load-map", opt.load_map, "start from this saved map (same --profile; dpcr-map info FILE shows it)");
@@ -251,12 +313,18 @@ int main(int argc, char** argv) {
   app.add_option("--region-width", opt.region_width_m, "region width S in metres (default: the configuration's, 4 m)")
       ->check(CLI::PositiveNumber);
   app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");
+  app.add_option("--heading", opt.heading, "--uart: the prediction's heading increment: wheels, or the integrated gyro frames (0x121)")
+      ->check(CLI::IsMember({"wheels", "gyro"}))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  for (const CLI::Option* o : app.get_options()) {
+    if (o->count() > 0) opt.given.insert(o->get_name());
+  }
   if (opt.carmen.empty() == opt.uart.empty()) {
     std::fprintf(stderr, "dpcr-replay: give either --carmen FILE or --uart FILE [--candump FILE]\n%s", app.help().c_str());
     return 2;
   }
   try {
+    CheckApplicable(opt);
     if (!opt.save_map.empty()) dpcr::output::PrepareMapFileDir(opt.save_map);
     if (!opt.uart.empty()) {
       return opt.profile == "building" ? ReplayDevice<dpcr::BuildingProfile>(opt) : ReplayDevice<dpcr::VacuumProfile>(opt);

@@ -35,12 +35,58 @@ struct Options {
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
   std::string scan_times;
+  std::string heading = "wheels";  // the prediction's heading: wheels, or gyro (FrontEndConfig::gyro_heading)
+  std::string lidar = "ld06";      // ld06, or xv11 (sim::Xv11LidarConfig)
+  std::string odometry = "wheels";  // wheels (+ gyro), gyro (no wheel encoders), none
 };
+
+// The odometry the robot has (--odometry): false when it has none; gyro: the rate alone.
+bool RobotOdometry(const Options& opt, dpcr::OdometrySample* sample) {
+  if (opt.odometry == "none") return false;
+  if (opt.odometry == "gyro") {
+    sample->pose = dpcr::Pose2::Identity();
+    sample->has_wheels = false;
+  }
+  return true;
+}
+
+std::unique_ptr<dpcr::DeviceEmitter> MakeEmitter(const Options& opt, const dpcr::MapperConfig& config,
+                                                 const dpcr::sim::SimConfig& sim_config) {
+  if (opt.emit_device.empty()) return nullptr;
+  std::filesystem::create_directories(opt.emit_device);
+  dpcr::DeviceFilesConfig files;
+  files.max_range_m = config.lidar.max_range_m;
+  files.laser_offset_m = config.lidar.mount.x;  // dpcr-sim's lidar faces forward on the robot's axis
+  files.lidar = opt.lidar == "xv11" ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06;
+  files.xv11_rate_hz = static_cast<float>(sim_config.lidar.rate_hz);
+  auto emitter = std::make_unique<dpcr::DeviceEmitter>(files);
+  std::string error;
+  if (!emitter->Open(opt.emit_device, &error)) throw std::runtime_error(error);
+  return emitter;
+}
+
+// The summary line (stderr), and a warning when the run was lost most of the time.
+template <class MapperType>
+void PrintSummary(const Options& opt, const MapperType& mapper, const dpcr::output::RunRecord& run,
+                  const nlohmann::json& metrics) {
+  std::fprintf(stderr, "dpcr-sim: %s, %.0f min, %zu scans in %.1f s, mapper %s, %d regions%s",
+               opt.world.c_str(), opt.minutes, run.estimate.size(), run.wall_seconds, mapper.pipeline(),
+               mapper.region_count(), dpcr::output::TrackingSummary(metrics).c_str());
+  if (metrics.contains("accuracy")) {
+    std::fprintf(stderr, ", LocErr_ave %.3f m, ATE %.3f m, max %.3f m", metrics["accuracy"]["loc_err_ave_m"].get<double>(),
+                 metrics["accuracy"]["ate_rmse_m"].get<double>(), metrics["accuracy"]["max_err_m"].get<double>());
+  }
+  if (!opt.load_map.empty()) std::fprintf(stderr, ", loaded %s", opt.load_map.c_str());
+  if (!opt.save_map.empty()) std::fprintf(stderr, ", map saved to %s (%zu bytes)", opt.save_map.c_str(), mapper.map_file_bytes());
+  std::fprintf(stderr, " -> %s/\n", opt.out.c_str());
+  const std::string warning = dpcr::output::TrackingWarning(metrics);
+  if (!warning.empty()) std::fprintf(stderr, "dpcr-sim: %s\n", warning.c_str());
+}
 
 // What was simulated: metrics.json "input".
 nlohmann::json InputMetrics(const Options& opt, const dpcr::sim::Simulation& sim) {
   const dpcr::sim::Pose2d& start = sim.start_pose();
-  return {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed},
+  return {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed}, {"heading", opt.heading}, {"lidar", opt.lidar}, {"odometry", opt.odometry},
           {"plan", opt.fixed_plan ? "fixed" : "varied by the seed"}, {"start_pose_in_world", {start.x, start.y, start.theta}},
           {"slip_events", sim.slip_events()}, {"coverage_tours", sim.tours_completed()}};
 }
@@ -54,12 +100,14 @@ int Run(const Options& opt) {
   sim_config.seed = opt.seed;
   sim_config.duration_min = opt.minutes;
   sim_config.vary_plan = !opt.fixed_plan;
+  if (opt.lidar == "xv11") sim_config.lidar = dpcr::sim::Xv11LidarConfig();
   dpcr::sim::Simulation sim(world, sim_config);
 
   dpcr::MapperConfig config;
   config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
+  config.front_end.gyro_heading = opt.heading == "gyro";
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));
   // A second session: the saved map, the robot at a known pose in its frame (the world's start
@@ -68,13 +116,7 @@ int Run(const Options& opt) {
     dpcr::output::LoadMapFile(mapper, opt.load_map, dpcr::Pose2{opt.start_pose[0], opt.start_pose[1], opt.start_pose[2]});
   }
 
-  std::unique_ptr<dpcr::DeviceEmitter> emitter;
-  if (!opt.emit_device.empty()) {
-    std::filesystem::create_directories(opt.emit_device);
-    emitter = std::make_unique<dpcr::DeviceEmitter>();
-    std::string error;
-    if (!emitter->Open(opt.emit_device, &error)) throw std::runtime_error(error);
-  }
+  std::unique_ptr<dpcr::DeviceEmitter> emitter = MakeEmitter(opt, config, sim_config);
 
   const auto start = Clock::now();
   dpcr::output::RunRecord run;
@@ -83,6 +125,7 @@ int Run(const Options& opt) {
   const double total_us = opt.minutes * 60e6;
   while (sim.Step(&event)) {
     if (event.type == dpcr::sim::SimEventType::kOdometry) {
+      if (!RobotOdometry(opt, &event.odometry)) continue;
       mapper.AddOdometry(event.odometry);
       if (emitter) emitter->AddOdometry(event.odometry);
       continue;
@@ -114,16 +157,7 @@ int Run(const Options& opt) {
   if (!opt.save_map.empty()) dpcr::output::SaveMapFile(mapper, opt.save_map);
   dpcr::apps::WriteScanTimes(opt.scan_times, run);
 
-  std::fprintf(stderr, "dpcr-sim: %s, %.0f min, %zu scans in %.1f s, mapper %s, %d regions, status %s",
-               opt.world.c_str(), opt.minutes, run.estimate.size(), run.wall_seconds, mapper.pipeline(),
-               mapper.region_count(), dpcr::ToString(mapper.status()));
-  if (metrics.contains("accuracy")) {
-    std::fprintf(stderr, ", LocErr_ave %.3f m, ATE %.3f m, max %.3f m", metrics["accuracy"]["loc_err_ave_m"].get<double>(),
-                 metrics["accuracy"]["ate_rmse_m"].get<double>(), metrics["accuracy"]["max_err_m"].get<double>());
-  }
-  if (!opt.load_map.empty()) std::fprintf(stderr, ", loaded %s", opt.load_map.c_str());
-  if (!opt.save_map.empty()) std::fprintf(stderr, ", map saved to %s (%zu bytes)", opt.save_map.c_str(), mapper.map_file_bytes());
-  std::fprintf(stderr, " -> %s/\n", opt.out.c_str());
+  PrintSummary(opt, mapper, run, metrics);
   return 0;
 }
 
@@ -150,6 +184,13 @@ int main(int argc, char** argv) {
   app.add_option("--region-width", opt.region_width_m, "region width S in metres (default: the configuration's, 4 m)")
       ->check(CLI::PositiveNumber);
   app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");
+  app.add_option("--heading", opt.heading, "the prediction's heading increment: wheels, or the integrated gyro (wheels keep the translation)")
+      ->check(CLI::IsMember({"wheels", "gyro"}))->capture_default_str();
+  app.add_option("--lidar", opt.lidar, "simulated lidar: ld06 (10 Hz, 450 beams, 12 m) or xv11 (5 Hz, 360 at 1 deg, 0.15-6 m, "
+                 "invalid and junk readings, spin-up); --emit-device writes its own packets")
+      ->check(CLI::IsMember({"ld06", "xv11"}))->capture_default_str();
+  app.add_option("--odometry", opt.odometry, "what the robot has: wheels (+ gyro), gyro (no wheel encoders), none")
+      ->check(CLI::IsMember({"wheels", "gyro", "none"}))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   if (opt.out.empty()) opt.out = "out/" + std::filesystem::path(opt.world).stem().string();
   try {

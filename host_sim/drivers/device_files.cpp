@@ -2,7 +2,11 @@
 
 #include <cmath>
 
+#include <fstream>
+#include <nlohmann/json.hpp>
+
 #include "hal/ld06_emitter.hpp"
+#include "hal/xv11_emitter.hpp"
 
 namespace dpcr {
 namespace {
@@ -14,11 +18,18 @@ constexpr std::int64_t kUnitsWrap = kWheelTimeWrapUnits;
 
 bool DeviceEmitter::Open(const std::string& dir, std::string* error) {
   dir_ = dir;
-  return uart_.Open(dir + "/lidar.uart", "ld06 baud 230400", error);
+  const bool xv11 = config_.lidar == LidarKind::kXv11;
+  return uart_.Open(dir + "/lidar.uart", xv11 ? "xv11 baud 115200" : "ld06 baud 230400", error);
 }
 
 bool DeviceEmitter::AddScan(const DeviceScan& scan) {
   bool ok = true;
+  if (config_.lidar == LidarKind::kXv11) {
+    Xv11EmittedPacket packets[kXv11PacketsPerRevolution];
+    EncodeXv11Revolution(scan.beams.data(), scan.beams.size(), scan.stamp_us, config_.angle_map, config_.xv11_rate_hz, packets);
+    for (const Xv11EmittedPacket& p : packets) ok = ok && uart_.Write(p.arrival_us, p.bytes, sizeof(p.bytes));
+    return ok;
+  }
   EmitLd06Revolution(scan, config_.angle_map, [this, &ok](const Ld06EmittedPacket& p) {
     ok = ok && uart_.Write(p.arrival_us, p.bytes, sizeof(p.bytes));
   });
@@ -26,6 +37,10 @@ bool DeviceEmitter::AddScan(const DeviceScan& scan) {
 }
 
 void DeviceEmitter::AddOdometry(const OdometrySample& sample) {
+  if (!sample.has_wheels) {
+    if (sample.has_gyro) AddGyro(sample);
+    return;
+  }
   if (started_) {
     // Increment in the previous robot frame -> arc length and heading change -> wheel travel.
     const Pose2 d = Between(last_pose_, sample.pose);
@@ -46,20 +61,59 @@ void DeviceEmitter::AddOdometry(const OdometrySample& sample) {
   f.right_ticks = static_cast<std::uint16_t>(std::llround(right_m_ * ticks_per_m) & 0xFFFF);
   f.sequence = ticks_seq_++;
   f.time_10us = static_cast<std::uint32_t>((sample.stamp_us / kWheelTimeUnitUs) % kUnitsWrap);
+  // The gyro frame before the ticks frame of the same instant, so the odometry sample carries the rate.
+  if (sample.has_gyro) AddGyro(sample);
   CandumpRecord r;
   r.stamp_us = sample.stamp_us;
   r.interface = config_.can_interface;
-  if (sample.has_gyro) {
-    // Before the ticks frame of the same instant, so the odometry sample carries the rate.
-    GyroFrame g;
-    g.yaw_rate_mrad_s = static_cast<std::int16_t>(std::lround(sample.gyro_yaw_rate * 1000.0f));
-    g.sequence = gyro_seq_++;
-    g.time_10us = f.time_10us;
-    r.frame = EncodeGyroFrame(g);
-    can_.push_back(r);
-  }
   r.frame = EncodeWheelFrame(f);
   can_.push_back(r);
+}
+
+void DeviceEmitter::AddGyro(const OdometrySample& sample) {
+  GyroFrame g;
+  g.yaw_rate_mrad_s = static_cast<std::int16_t>(std::lround(sample.gyro_yaw_rate * 1000.0f));
+  g.sequence = gyro_seq_++;
+  g.time_10us = static_cast<std::uint32_t>((sample.stamp_us / kWheelTimeUnitUs) % kUnitsWrap);
+  CandumpRecord r;
+  r.stamp_us = sample.stamp_us;
+  r.interface = config_.can_interface;
+  r.frame = EncodeGyroFrame(g);
+  can_.push_back(r);
+}
+
+bool WriteDeviceDescription(const std::string& path, const DeviceOptions& o, const std::string& lidar,
+                            std::string* error) {
+  const nlohmann::json j = {{"lidar", lidar},
+                            {"angle_sign", o.angle_sign},
+                            {"wheel_radius_m", o.wheels.wheel_radius_m},
+                            {"track_width_m", o.wheels.track_width_m},
+                            {"ticks_per_rev", o.wheels.ticks_per_rev},
+                            {"max_range_m", o.max_range_m},
+                            {"laser_offset_m", o.laser_offset_m}};
+  std::ofstream out(path);
+  out << j.dump(2) << "\n";
+  if (!out) *error = path + ": write failed";
+  return static_cast<bool>(out);
+}
+
+bool ReadDeviceDescription(const std::string& path, DeviceOptions* o, std::string* lidar, std::string* error) {
+  std::ifstream in(path);
+  if (!in) return true;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    if (j.contains("lidar")) *lidar = j["lidar"].get<std::string>();
+    if (j.contains("angle_sign")) o->angle_sign = j["angle_sign"].get<float>() < 0.0f ? -1.0f : 1.0f;
+    if (j.contains("wheel_radius_m")) o->wheels.wheel_radius_m = j["wheel_radius_m"].get<float>();
+    if (j.contains("track_width_m")) o->wheels.track_width_m = j["track_width_m"].get<float>();
+    if (j.contains("ticks_per_rev")) o->wheels.ticks_per_rev = j["ticks_per_rev"].get<float>();
+    if (j.contains("max_range_m")) o->max_range_m = j["max_range_m"].get<float>();
+    if (j.contains("laser_offset_m")) o->laser_offset_m = j["laser_offset_m"].get<float>();
+  } catch (const nlohmann::json::exception& e) {
+    *error = path + ": " + e.what();
+    return false;
+  }
+  return true;
 }
 
 bool DeviceEmitter::Close(std::string* error) {
@@ -67,6 +121,13 @@ bool DeviceEmitter::Close(std::string* error) {
     *error = dir_ + "/lidar.uart: write failed";
     return false;
   }
+  DeviceOptions options;
+  options.wheels = config_.wheels;
+  options.angle_sign = config_.angle_map.angle_sign;
+  options.max_range_m = config_.max_range_m;
+  options.laser_offset_m = config_.laser_offset_m;
+  const char* lidar = config_.lidar == LidarKind::kXv11 ? "xv11" : "ld06";
+  if (!WriteDeviceDescription(dir_ + "/device.json", options, lidar, error)) return false;
   return WriteCandumpLog(dir_ + "/wheels.log", can_, error);
 }
 
@@ -87,9 +148,20 @@ void DeviceReplay::Run() {
   std::vector<std::uint8_t> pending(4096);
   ByteRead chunk;  // the UART bytes read and not yet fed: pending[fed .. chunk.size)
   std::size_t fed = 0;
+  bool flushed = false;
+  std::int64_t flush_after_us = INT64_MIN;
   for (;;) {
     const std::int64_t uart_t = fed < chunk.size ? chunk.stamp_us : uart_->next_stamp_us();
     const std::int64_t can_t = can_->next_stamp_us();
+    if (!flushed && uart_t == INT64_MAX) {
+      // The capture's last revolution (no wrap follows to close it), when the firmware's poll loop
+      // notices the end of its UART: after the frames of the next CAN instant, or at once.
+      if (flush_after_us == INT64_MIN) flush_after_us = can_t;
+      if (can_t > flush_after_us || can_t == INT64_MAX) {
+        pipeline_->FlushLidar();
+        flushed = true;
+      }
+    }
     if (can_t == INT64_MAX && uart_t == INT64_MAX) return;
     if (can_t <= uart_t) {  // frames first on a tie: the scan then sees the odometry of its instant
       const CanRead r = can_->Read();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/front_end/odometry.hpp"
+#include "hal/device_options.hpp"
 #include "hal/device_pipeline.hpp"
 #include "hal/diff_drive_odometry.hpp"
 #include "hal/lidar_stream.hpp"
@@ -23,11 +24,25 @@ struct DeviceFilesConfig {
   LidarAngleMap angle_map{1.0f, 0.0f};
   DiffDriveConfig wheels{0.035f, 0.235f, 4096.0f};
   std::string can_interface = "can0";
+  // Written into DIR/device.json with the above (the lidar's range limit and mount).
+  float max_range_m = LidarConfig{}.max_range_m;
+  float laser_offset_m = 0.0f;
+  // The lidar's packets: LD06, or XV-11 (hal/xv11_emitter.hpp) turning at xv11_rate_hz.
+  LidarKind lidar = LidarKind::kLd06;
+  float xv11_rate_hz = 5.0f;
 };
 
-// Writes DIR/lidar.uart and DIR/wheels.log (DeviceEmitter::Open/Close). Scans become LD06
-// packets, one capture chunk per packet at its arrival time; odometry poses become wheel ticks
-// (inverse diff-drive on each increment, cumulative rounding) plus a gyro frame when present.
+// DIR/device.json: the device options a recording was made with (hal/device_options.hpp) and
+// its lidar ("ld06" / "xv11"). Read: fields present override `options` / `lidar`; false with
+// `error` when the file is unreadable or malformed (a missing file is no error: nothing changes).
+bool WriteDeviceDescription(const std::string& path, const DeviceOptions& options, const std::string& lidar,
+                            std::string* error);
+bool ReadDeviceDescription(const std::string& path, DeviceOptions* options, std::string* lidar, std::string* error);
+
+// Writes DIR/lidar.uart, DIR/wheels.log and DIR/device.json (DeviceEmitter::Open/Close). Scans
+// become LD06 or XV-11 packets, one capture chunk per packet at its arrival time; odometry poses
+// become wheel ticks (inverse diff-drive on each increment, cumulative rounding) plus a gyro frame
+// when present; a sample without wheels (has_wheels false) only its gyro frame.
 class DeviceEmitter {
  public:
   explicit DeviceEmitter(const DeviceFilesConfig& config = DeviceFilesConfig()) : config_(config) {}
@@ -37,6 +52,7 @@ class DeviceEmitter {
   bool Close(std::string* error);
 
  private:
+  void AddGyro(const OdometrySample& sample);
   DeviceFilesConfig config_;
   std::string dir_;
   UartCaptureWriter uart_;
@@ -50,7 +66,8 @@ class DeviceEmitter {
 };
 
 // Replays a UART capture + candump log in time order through a DevicePipeline into `sink`: a
-// scan comes after every odometry sample recorded up to the time its revolution closed.
+// scan comes after every odometry sample recorded up to the time its revolution closed; at the
+// end, the last revolution is flushed (DevicePipeline::FlushLidar).
 class DeviceReplay {
  public:
   DeviceReplay(const DeviceFilesConfig& files, const LidarStreamConfig& lidar, DeviceSink* sink);

@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <stdexcept>
 
@@ -29,6 +30,42 @@ nlohmann::json RelationsJson(const dpcr::eval::RelationsResult& r) {
 }
 
 }  // namespace
+
+nlohmann::json TrackingMetrics(const dpcr::MapperCounters& c, std::uint32_t first_registrations) {
+  const double scans = c.scans > 0 ? static_cast<double>(c.scans) : 1.0;
+  const double rejected = static_cast<double>(c.scans_rejected - c.scans_empty);
+  return {{"tracking_fraction", 1.0 - static_cast<double>(c.lost_scans) / scans},
+          {"lost_scans", c.lost_scans},
+          {"lost_seconds", static_cast<double>(c.lost_us) * 1e-6},
+          {"streak_scans", c.streak_scans},
+          {"streak_seconds", static_cast<double>(c.streak_us) * 1e-6},
+          {"longest_streak_scans", c.longest_streak_scans},
+          {"longest_streak_seconds", static_cast<double>(c.longest_streak_us) * 1e-6},
+          {"first_rejected_fraction", first_registrations > 0 ? rejected / first_registrations : 0.0},
+          {"scans_fused_at_prediction", c.scans_fused_at_prediction},
+          {"scans_kept_out_rejected", c.scans_kept_out_rejected},
+          {"submap_restarts", c.submap_restarts}};
+}
+
+std::string TrackingSummary(const nlohmann::json& m) {
+  const auto& t = m["tracking"];
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                ", status %s, tracking %.0f %% (lost %.1f s), first registrations rejected %.0f %% "
+                "(%u fused at prediction, %u kept out; longest streak %u scans, %.1f s)",
+                m["status"].get<std::string>().c_str(), 100.0 * t["tracking_fraction"].get<double>(),
+                t["lost_seconds"].get<double>(), 100.0 * t["first_rejected_fraction"].get<double>(),
+                t["scans_fused_at_prediction"].get<unsigned>(), t["scans_kept_out_rejected"].get<unsigned>(),
+                t["longest_streak_scans"].get<unsigned>(), t["longest_streak_seconds"].get<double>());
+  return buf;
+}
+
+std::string TrackingWarning(const nlohmann::json& m) {
+  if (m["tracking"]["tracking_fraction"].get<double>() >= 0.5) return "";
+  return "warning: lost for most of the run (tracking " +
+         std::to_string(static_cast<int>(100.0 * m["tracking"]["tracking_fraction"].get<double>())) +
+         " %): the map and trajectory are not to be trusted";
+}
 
 nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, const RunRecord& run,
                                nlohmann::json metrics) {

@@ -12,6 +12,7 @@
 #include "host_sim/output/map_files.hpp"
 #include "host_sim/eval/accuracy.hpp"
 #include "host_sim/eval/trajectory.hpp"
+#include "core/mapper_types.hpp"
 
 namespace dpcr::output {
 
@@ -81,6 +82,16 @@ void FinalizeTrajectory(const MapperType& mapper, RunRecord* run) {
 nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, const RunRecord& run,
                                nlohmann::json mapper_metrics);
 
+// How much of the run the mapper knew where it was (metrics.json "tracking"): scans and seconds
+// lost (status kLost after the scan) and in rejection streaks, the longest streak, the share of
+// first registrations rejected; tracking_fraction = 1 - lost scans / scans.
+nlohmann::json TrackingMetrics(const dpcr::MapperCounters& c, std::uint32_t first_registrations);
+
+// One clause for a summary line: the final status, the tracking fraction, rejection figures; and
+// a warning sentence when the run was lost most of the time (empty otherwise).
+std::string TrackingSummary(const nlohmann::json& metrics);
+std::string TrackingWarning(const nlohmann::json& metrics);
+
 // The metrics a Mapper reports about itself.
 template <class MapperType>
 nlohmann::json MapperMetrics(const MapperType& mapper) {
@@ -119,7 +130,13 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                    {"region_pool_full", c.region_pool_full},
                    {"updates_out_of_box", c.updates_out_of_box},
                    {"updates_dropped_pool_full", c.updates_dropped_pool_full},
-                   {"scans_not_inserted", c.scans_not_inserted}};
+                   {"scans_not_inserted", c.scans_not_inserted},
+                   {"scans_empty", c.scans_empty},
+                   {"scans_fused_at_prediction", c.scans_fused_at_prediction},
+                   {"scans_kept_out_rejected", c.scans_kept_out_rejected},
+                   {"submap_restarts", c.submap_restarts}};
+  j["tracking"] = TrackingMetrics(c, mapper.front_end_counters().first_registrations);
+  j["tracking_fraction"] = j["tracking"]["tracking_fraction"];
   const auto& f = mapper.front_end_counters();
   j["front_end"] = {{"first_registrations", f.first_registrations}, {"first_rejected", f.first_rejected},
                     {"second_registrations", f.second_registrations}, {"second_rejected", f.second_rejected},

@@ -21,6 +21,30 @@ float SimulateBeam(const WorldRayCaster& caster, const LidarConfig& config, cons
   return static_cast<float>(r);
 }
 
+LidarConfig Xv11LidarConfig() {
+  LidarConfig c;
+  c.beams_per_revolution = 360;
+  c.rate_hz = 5.0;
+  c.min_range_m = 0.15;
+  c.max_range_m = 6.0;
+  c.noise_base_m = 0.01;
+  c.noise_fraction = 0.01;
+  c.invalid_probability = 0.3;
+  c.junk_probability = 0.01;
+  c.spin_up_valid_probability = 0.1;
+  return c;
+}
+
+float DegradeBeam(float range_m, const LidarConfig& config, bool spin_up, std::mt19937_64* rng) {
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const double u_junk = uniform(*rng), junk = uniform(*rng), u_valid = uniform(*rng);
+  if (u_junk < config.junk_probability) {
+    return static_cast<float>(config.min_range_m + junk * (config.max_range_m - config.min_range_m));
+  }
+  const double keep = (1.0 - config.invalid_probability) * (spin_up ? config.spin_up_valid_probability : 1.0);
+  return u_valid < keep ? range_m : 0.0f;
+}
+
 WheelOdometryModel::WheelOdometryModel(const OdometryConfig& config, std::uint64_t seed)
     : config_(config), rng_(seed) {
   believed_ = WheelCalibration{config.wheel_radius_m, config.wheel_radius_m, config.track_m};

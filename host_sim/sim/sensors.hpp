@@ -20,7 +20,21 @@ struct LidarConfig {
   double noise_fraction = 0.005;
   bool dropouts = true;           // apply the materials' return probabilities
   Pose2d mount;                   // sensor pose in the robot frame
+  // Low-cost lidar faults (0 / 1: off, the LD06 model; DegradeBeam): a return is lost (invalid
+  // flag) with invalid_probability, replaced by a junk range uniform in [min, max] with
+  // junk_probability; in the first revolution (spin-up) only spin_up_valid_probability of the
+  // returns come.
+  double invalid_probability = 0.0;
+  double junk_probability = 0.0;
+  double spin_up_valid_probability = 1.0;
 };
+
+// A Neato XV-11: 5 Hz, 360 readings at 1 degree, 0.15-6 m, 30 % of the returns invalid, 1 % junk,
+// a spin-up revolution with 10 % of its returns.
+LidarConfig Xv11LidarConfig();
+
+// The faults above applied to one simulated range (draws the same random numbers whatever happens).
+float DegradeBeam(float range_m, const LidarConfig& config, bool spin_up, std::mt19937_64* rng);
 
 // Range of one beam from the sensor pose in the world; 0 = no return.
 float SimulateBeam(const WorldRayCaster& caster, const LidarConfig& config, const Pose2d& sensor_pose,

@@ -105,6 +105,9 @@ bool Simulation::Step(SimEvent* out) {
     Beam beam;
     beam.angle_rad = NormalizeAngle(static_cast<float>(angle));
     beam.range_m = SimulateBeam(caster_, lidar, sensor, angle, &lidar_rng_);
+    if (lidar.invalid_probability > 0.0 || lidar.junk_probability > 0.0 || lidar.spin_up_valid_probability < 1.0) {
+      beam.range_m = DegradeBeam(beam.range_m, lidar, next_beam_ <= n, &lidar_rng_);
+    }
     beam.offset_us = static_cast<std::int32_t>(beam_us - scan.stamp_us);
     (void)scan.beams.push_back(beam);  // capacity checked in the constructor
     if (i == n - 1) {

@@ -147,6 +147,8 @@ std::vector<BadField> BadFields() {
       INT_FIELD(front_end.region_mature_scans, kCount),
       FLOAT_FIELD(front_end.reference_inner_margin_m, kNonNegative),
       INT_FIELD(front_end.lost_after_rejections, kCount),
+      INT_FIELD(front_end.submap_restart_after_rejections, kCount),
+      FLOAT_FIELD(front_end.uncertain_turn_rad, (std::vector<double>{-1.0, kNaN, kInf, 4.0})),
       FLOAT_FIELD(front_end.prior_info_xy, kNonNegative),
       FLOAT_FIELD(front_end.prior_info_theta, kNonNegative),
       INT_FIELD(front_end.second_registration_max_points, kCount),  // 0 divided by zero in SubmapTarget

@@ -41,3 +41,47 @@ TEST_CASE("Jittered stamps give no velocity explosion, and steps back are counte
   REQUIRE(b.steps_back() == 1);
   REQUIRE(b.PoseAt(500).x == Approx(0.6f));
 }
+
+TEST_CASE("The gyro rate integrates to a yaw between samples, and absent rates give none") {
+  dpcr::OdometryBuffer buf;
+  float yaw = 0.0f;
+  REQUIRE_FALSE(buf.GyroYawAt(0, &yaw));
+  // 100 Hz, 0.5 rad/s for 1 s while the wheels claim no turn at all.
+  for (int k = 0; k <= 100; ++k) {
+    dpcr::OdometrySample s;
+    s.stamp_us = k * 10000;
+    s.has_gyro = true;
+    s.gyro_yaw_rate = 0.5f;
+    buf.Add(s);
+  }
+  float a = 0.0f, b = 0.0f;
+  REQUIRE(buf.GyroYawAt(500000, &a));
+  REQUIRE(buf.GyroYawAt(905000, &b));  // between two samples: interpolated
+  REQUIRE(dpcr::NormalizeAngle(b - a) == Approx(0.2025f).margin(1e-4));
+  REQUIRE(buf.GyroYawAt(1050000, &b));  // past the newest: extrapolated at its rate
+  REQUIRE(dpcr::NormalizeAngle(b - a) == Approx(0.275f).margin(1e-4));
+  REQUIRE_FALSE(buf.GyroYawAt(0, &a));  // older than the buffer
+  dpcr::OdometrySample wheels_only;
+  wheels_only.stamp_us = 1010000;
+  buf.Add(wheels_only);
+  REQUIRE_FALSE(buf.GyroYawAt(1010000, &a));
+}
+
+TEST_CASE("With gyro_heading the prediction turns by the gyro, and moves by the wheels") {
+  // Wheels: straight 0.1 m along x; gyro: 0.3 rad over the same 0.1 s.
+  dpcr::OdometryBuffer buf;
+  for (int k = 0; k <= 10; ++k) {
+    dpcr::OdometrySample s;
+    s.stamp_us = k * 10000;
+    s.pose = dpcr::Pose2{0.01f * static_cast<float>(k), 0.0f, 0.0f};
+    s.has_gyro = true;
+    s.gyro_yaw_rate = 3.0f;
+    buf.Add(s);
+  }
+  float y0 = 0.0f, y1 = 0.0f;
+  REQUIRE(buf.GyroYawAt(0, &y0));
+  REQUIRE(buf.GyroYawAt(100000, &y1));
+  REQUIRE(dpcr::NormalizeAngle(y1 - y0) == Approx(0.3f).margin(1e-5));
+  REQUIRE(buf.PoseAt(100000).x == Approx(0.1f));
+  REQUIRE(buf.PoseAt(100000).theta == Approx(0.0f));
+}

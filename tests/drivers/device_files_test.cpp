@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -95,7 +96,7 @@ TEST_CASE("emit device files then replay gives the same scans and trajectory") {
   REQUIRE(replay.Open(dir + "/lidar.uart", dir + "/wheels.log", &error));
   replay.Run();
   const std::vector<dpcr::OdometrySample>& odo = sink.odometry;
-  CHECK(sink.scans == run.scans.size() - 1);  // the last revolution never closes
+  CHECK(sink.scans == run.scans.size());  // the last revolution too (DevicePipeline::FlushLidar)
   REQUIRE(odo.size() == run.odometry.size());
   double max_err = 0.0;
   for (std::size_t i = 0; i < odo.size(); ++i) {
@@ -113,5 +114,40 @@ TEST_CASE("emit device files then replay gives the same scans and trajectory") {
   const dpcr::DevicePipelineCounters c = replay.counters();
   CHECK(c.lidar.bad_packets == 0);
   CHECK(c.can.lost == 0);
-  CHECK(c.scans == 29);
+  CHECK(c.scans == 30);  // the last revolution included
+}
+
+TEST_CASE("the emitter describes the device in device.json, which reads back as the device options") {
+  const dpcr::test::ScopedTempDir temp("device_json");
+  const std::string dir = temp.str();
+  dpcr::DeviceFilesConfig files;
+  files.max_range_m = 8.0f;
+  files.laser_offset_m = 0.05f;
+  {
+    dpcr::DeviceEmitter emitter(files);
+    std::string error;
+    REQUIRE(emitter.Open(dir, &error));
+    REQUIRE(emitter.Close(&error));
+  }
+  dpcr::DeviceOptions options;  // the firmware's defaults: clockwise, 1000 ticks
+  REQUIRE(options.angle_sign == -1.0f);
+  std::string lidar = "xv11", error;
+  REQUIRE(dpcr::ReadDeviceDescription(dir + "/device.json", &options, &lidar, &error));
+  CHECK(lidar == "ld06");
+  CHECK(options.angle_sign == files.angle_map.angle_sign);
+  CHECK(options.wheels.ticks_per_rev == files.wheels.ticks_per_rev);
+  CHECK(options.wheels.wheel_radius_m == files.wheels.wheel_radius_m);
+  CHECK(options.wheels.track_width_m == files.wheels.track_width_m);
+  CHECK(options.max_range_m == 8.0f);
+  CHECK(options.laser_offset_m == 0.05f);
+  // No description: nothing changes, no error; a malformed one: an error naming it.
+  dpcr::DeviceOptions untouched;
+  REQUIRE(dpcr::ReadDeviceDescription(dir + "/none.json", &untouched, &lidar, &error));
+  CHECK(untouched.wheels.ticks_per_rev == dpcr::DeviceOptions{}.wheels.ticks_per_rev);
+  {
+    std::ofstream bad(dir + "/bad.json");
+    bad << "{ \"angle_sign\": ";
+  }
+  REQUIRE_FALSE(dpcr::ReadDeviceDescription(dir + "/bad.json", &untouched, &lidar, &error));
+  CHECK(error.find("bad.json") != std::string::npos);
 }

@@ -140,3 +140,34 @@ TEST_CASE("pipeline: frames and revolutions reach the sink in the order they wer
   pipeline->FeedAllLidar(bytes.data() + used, bytes.size() - used, 4000);
   CHECK(std::string(sink.order.begin(), sink.order.end()) == "osos");
 }
+
+TEST_CASE("without wheel encoders, gyro frames become gyro-only odometry samples") {
+  RecordingSink sink;
+  auto pipeline = std::make_unique<dpcr::DevicePipeline>(dpcr::DevicePipelineConfig{}, &sink);
+  pipeline->FeedCan(Gyro(100, 0, 0), 40000);  // the first one may yet be followed by ticks: no sample
+  CHECK(sink.odometry.empty());
+  pipeline->FeedCan(Gyro(500, 1, 1000), 50000);
+  pipeline->FeedCan(Gyro(-250, 2, 2000), 60000);
+  REQUIRE(sink.odometry.size() == 2);
+  CHECK_FALSE(sink.odometry[0].has_wheels);
+  CHECK(sink.odometry[0].has_gyro);
+  CHECK(sink.odometry[0].gyro_yaw_rate == Approx(0.5f));
+  CHECK(sink.odometry[1].gyro_yaw_rate == Approx(-0.25f));
+  CHECK(sink.odometry[1].stamp_us - sink.odometry[0].stamp_us == 10000);  // the IMU's clock
+  // Once wheel frames come, gyro frames only set the rate the wheel samples carry.
+  pipeline->FeedCan(Ticks(0, 0, 0, 3000), 70000);
+  pipeline->FeedCan(Gyro(100, 3, 4000), 80000);
+  pipeline->FeedCan(Gyro(100, 4, 5000), 90000);
+  REQUIRE(sink.odometry.size() == 3);
+  CHECK(sink.odometry[2].has_wheels);
+}
+
+TEST_CASE("a gyro frame just before the first ticks frame makes no gyro-only sample") {
+  RecordingSink sink;
+  auto pipeline = std::make_unique<dpcr::DevicePipeline>(dpcr::DevicePipelineConfig{}, &sink);
+  pipeline->FeedCan(Gyro(100, 0, 1000), 50000);
+  pipeline->FeedCan(Ticks(0, 0, 0, 1000), 50000);
+  REQUIRE(sink.odometry.size() == 1);
+  CHECK(sink.odometry[0].has_wheels);
+  CHECK(sink.odometry[0].has_gyro);
+}

@@ -158,3 +158,23 @@ TEST_CASE("assembler decimates in place past its raw capacity") {
   CHECK(scan->beams.size() == 512);
   CHECK(std::fabs(scan->beams[511].angle_rad) < 0.03f);
 }
+
+TEST_CASE("at the end of a stream the last revolution is flushed when nearly complete") {
+  auto a = std::make_unique<ScanAssembler>();
+  auto scan = std::make_unique<BigScan>();
+  CHECK_FALSE(a->Flush());  // nothing yet
+  for (int rev = 0; rev < 2; ++rev) {
+    for (int k = 0; k < 90; ++k) {
+      if (a->Add(XvPacket(k, rev * 200000))) a->TakeScan(scan.get());
+    }
+  }
+  REQUIRE(a->Flush());  // the second turn reached 359 deg: kept
+  a->TakeScan(scan.get());
+  CHECK(scan->beams.size() == 360);
+  CHECK(scan->stamp_us == 200000);
+  CHECK(a->counters().revolutions == 2);
+  CHECK_FALSE(a->Flush());  // once
+  // A turn cut short at the end is not a revolution.
+  for (int k = 0; k < 45; ++k) (void)a->Add(XvPacket(k, 400000));
+  CHECK_FALSE(a->Flush());
+}

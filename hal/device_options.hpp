@@ -1,0 +1,26 @@
+// The robot's device options, one set for dpcr-firmware and dpcr-replay --uart (and written by
+// dpcr-sim --emit-device into DIR/device.json): wheel geometry and encoder, the lidar's angle
+// direction, its range limit and its mount. The defaults are the firmware's (an upright LD06,
+// a typical vacuum drive); a recording made elsewhere describes itself in device.json.
+#pragma once
+
+#include "core/config.hpp"
+#include "hal/diff_drive_odometry.hpp"
+#include "hal/scan_assembler.hpp"
+
+namespace dpcr {
+
+struct DeviceOptions {
+  DiffDriveConfig wheels;          // radius 0.035 m, track 0.235 m, 1000 ticks per revolution
+  float angle_sign = -1.0f;        // -1: device angles clockwise (an upright LD06); +1: counter-clockwise
+  float max_range_m = LidarConfig{}.max_range_m;  // returns farther than this are ignored
+  float laser_offset_m = 0.0f;     // the lidar this far ahead of the robot centre, facing forward
+
+  LidarAngleMap angle_map() const { return LidarAngleMap{angle_sign, 0.0f}; }
+  void ApplyTo(LidarConfig* lidar) const {
+    lidar->max_range_m = max_range_m;
+    lidar->mount = Pose2{laser_offset_m, 0.0f, 0.0f};
+  }
+};
+
+}  // namespace dpcr

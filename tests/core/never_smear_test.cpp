@@ -1,0 +1,129 @@
+// Never smear (FrontEndConfig::uncertain_turn_rad): a scan whose first registration was rejected
+// while the prediction was uncertain goes into no map; a long streak reports lost, is counted,
+// and the submap restarts so that tracking can come back.
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "core/mapper.hpp"
+#include "tests/budget/synthetic_run.hpp"
+
+namespace {
+
+using M = dpcr::Mapper<dpcr::VacuumProfile>;
+
+std::vector<std::int16_t> Render(const M& m) {
+  const dpcr::CellBox box = m.MapBounds();
+  std::vector<std::int16_t> cells(static_cast<std::size_t>(box.width() * box.height()));
+  REQUIRE(m.RenderMap(box, dpcr::Span<std::int16_t>(cells.data(), cells.size())) == dpcr::Status::kOk);
+  return cells;
+}
+
+// Junk: ranges that match nothing (a lidar spinning up or reporting garbage).
+M::ScanType Junk(std::int64_t stamp_us, std::mt19937* rng) {
+  std::uniform_real_distribution<float> range(0.3f, 3.0f);
+  M::ScanType scan;
+  scan.stamp_us = stamp_us;
+  for (int b = 0; b < 360; ++b) {
+    dpcr::Beam beam;
+    beam.angle_rad = -dpcr::kPi + 2.0f * dpcr::kPi * static_cast<float>(b) / 360.0f;
+    beam.range_m = range(*rng);
+    (void)scan.beams.push_back(beam);
+  }
+  return scan;
+}
+
+struct Runner {
+  std::unique_ptr<M> m = std::make_unique<M>();
+  dpcr::test::SyntheticRun<M> run{8.0f, 120, 450};
+  std::size_t odom = 0;
+  Runner() { REQUIRE(m->Init(dpcr::MapperConfig{}) == dpcr::Status::kOk); }
+  void Odometry(std::int64_t up_to_us) {
+    while (odom < run.odometry.size() && run.odometry[odom].stamp_us <= up_to_us) m->AddOdometry(run.odometry[odom++]);
+  }
+  void Scan(int i) {
+    Odometry(run.scans[static_cast<std::size_t>(i)].stamp_us);
+    (void)m->AddScan(run.scans[static_cast<std::size_t>(i)]);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("A rejected scan under an uncertain prediction goes into no map; a streak is lost and counted") {
+  Runner r;
+  std::mt19937 rng(7);
+  for (int i = 0; i < 20; ++i) r.Scan(i);
+  REQUIRE(r.m->status() == dpcr::MapperStatus::kTracking);
+  REQUIRE(r.m->counters().scans_rejected == 0);
+  // One rejection with good odometry and no turn: fused at the prediction (the map changes).
+  r.Odometry(r.run.scans[20].stamp_us);
+  (void)r.m->AddScan(Junk(r.run.scans[20].stamp_us, &rng));
+  REQUIRE(r.m->counters().scans_fused_at_prediction == 1);
+  REQUIRE(r.m->counters().scans_kept_out_rejected == 0);
+  // Rejections in a row: the prediction is uncertain, nothing more goes into any map.
+  const std::vector<std::int16_t> before = Render(*r.m);
+  const std::size_t tiles = r.m->tiles_used();
+  for (int i = 21; i < 36; ++i) {
+    r.Odometry(r.run.scans[static_cast<std::size_t>(i)].stamp_us);
+    (void)r.m->AddScan(Junk(r.run.scans[static_cast<std::size_t>(i)].stamp_us, &rng));
+  }
+  REQUIRE(r.m->tiles_used() == tiles);
+  REQUIRE(Render(*r.m) == before);
+  const dpcr::MapperCounters& c = r.m->counters();
+  REQUIRE(c.scans_kept_out_rejected == 15);
+  REQUIRE(c.scans_not_inserted == 15);
+  REQUIRE(c.scans_rejected == 16);
+  REQUIRE(r.m->front_end_counters().first_rejected == 16);
+  REQUIRE(c.streak_scans == 16);
+  REQUIRE(c.longest_streak_scans == 16);
+  REQUIRE(c.streak_us == 16 * 100000);
+  REQUIRE(c.longest_streak_us == 16 * 100000);
+  REQUIRE(c.submap_restarts == 1);  // at the 10th rejection in a row
+  // A run that ends in a streak says lost.
+  REQUIRE(r.m->status() == dpcr::MapperStatus::kLost);
+  REQUIRE(c.lost_scans == 7);  // rejections 10 to 16
+  REQUIRE(c.lost_us == 7 * 100000);
+  // Good scans again: the submap restarts from one of them and tracking comes back.
+  for (int i = 36; i < 80; ++i) r.Scan(i);
+  REQUIRE(r.m->status() == dpcr::MapperStatus::kTracking);
+  REQUIRE(r.m->counters().longest_streak_scans >= 16);
+  REQUIRE(r.m->counters().scans_not_inserted < 40);
+}
+
+TEST_CASE("Without odometry a rejected scan is never fused") {
+  auto m = std::make_unique<M>();
+  REQUIRE(m->Init(dpcr::MapperConfig{}) == dpcr::Status::kOk);
+  const dpcr::test::SyntheticRun<M> run(8.0f, 10, 450);
+  (void)m->AddScan(run.scans[0]);
+  const std::vector<std::int16_t> before = Render(*m);
+  std::mt19937 rng(3);
+  (void)m->AddScan(Junk(run.scans[1].stamp_us, &rng));
+  REQUIRE(m->counters().scans_rejected == 1);
+  REQUIRE(m->counters().scans_kept_out_rejected == 1);
+  REQUIRE(m->counters().scans_fused_at_prediction == 0);
+  REQUIRE(Render(*m) == before);
+}
+
+TEST_CASE("With a gyro alone (no wheels) a rejected scan is never fused") {
+  auto m = std::make_unique<M>();
+  REQUIRE(m->Init(dpcr::MapperConfig{}) == dpcr::Status::kOk);  // gyro_heading off: no wheels, the gyro anyway
+  const dpcr::test::SyntheticRun<M> run(8.0f, 10, 450);
+  for (int k = 0; k <= 10; ++k) {
+    dpcr::OdometrySample s;
+    s.stamp_us = run.scans[0].stamp_us - 50000 + k * 10000;
+    s.has_wheels = false;
+    s.has_gyro = true;
+    s.gyro_yaw_rate = 0.0f;
+    m->AddOdometry(s);
+  }
+  (void)m->AddScan(run.scans[0]);
+  const std::vector<std::int16_t> before = Render(*m);
+  std::mt19937 rng(5);
+  (void)m->AddScan(Junk(run.scans[0].stamp_us + 50000, &rng));
+  REQUIRE(m->counters().scans_kept_out_rejected == 1);
+  REQUIRE(m->counters().scans_fused_at_prediction == 0);
+  REQUIRE(Render(*m) == before);
+}
