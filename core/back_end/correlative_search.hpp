@@ -103,7 +103,9 @@ struct CorrelativeSearchConfig {
 struct CorrelativeSearchResult {
   Pose2 pose;                // best pose of the cloud's frame in the map's frame
   float score = 0.0f;        // mean likelihood of the best pose, 0..1
-  float second_score = 0.0f; // the best score of a separate peak
+  // The best score of a separate peak when one reaches max_second_ratio of the best (what decides);
+  // below that, the best separate pose the sweep happened to score (0 if none).
+  float second_score = 0.0f;
   std::uint32_t poses_evaluated = 0;
   Status verdict = Status::kNotEnoughData;  // kOk, kRejected (weak or ambiguous), kNotEnoughData
 };
