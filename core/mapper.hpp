@@ -173,7 +173,7 @@ class Mapper {
     s.back_end.match_grid = &match_grid_;
     s.back_end.reference = &region_reference_;
     s.back_end.cloud = Span<Point2>(back_end_cloud_, kBackEndCloudPoints);
-    s.back_end.rotated = Span<Point2>(search_rotated_, kSearchPoints);
+    s.back_end.rotated = Span<MatchCell>(search_rotated_, kSearchPoints);
     s.back_end.correspondences = s.correspondences;
     s.back_end.jobs = Span<std::int32_t>(back_end_jobs_, Profile::kMaxRegions + 1);
     s.search_grid = &search_grid_;
@@ -205,7 +205,7 @@ class Mapper {
   PoseGraphStorage<Profile::kMaxRegions, Profile::kMaxGraphEdges> graph_;
   MatchGrid match_grid_{kMatchGridSide, kMatchGridSide};  // cells lent by region_reference_
   Point2 back_end_cloud_[kBackEndCloudPoints];
-  Point2 search_rotated_[kSearchPoints];
+  MatchCell search_rotated_[kSearchPoints];
   std::int32_t back_end_jobs_[Profile::kMaxRegions + 1];
   // The first registration's coarse search grid: the submap window at 10 cm plus the kernel margin.
   static constexpr int kSearchGridSide = Profile::kSubmapSideCells / 2 + 16;

@@ -31,9 +31,11 @@ struct MapperCounters {
   std::uint32_t region_pool_full = 0;        // scans that wanted a new region and got none
   std::uint32_t updates_out_of_box = 0;      // cell updates past a regional map's box
   std::uint32_t updates_dropped_pool_full = 0;
-  // Scans kept out of the regional maps (no smeared copy of the room): the robot was back in a
-  // known map after a loop and had not yet placed itself in it, or scans_kept_out_rejected.
+  // Scans kept out of the regional maps (no smeared copy of the room): scans_kept_out_rejected.
   std::uint32_t scans_not_inserted = 0;
+  // Scans mapped into the anchor map (the one the robot's pose is known in) while it could not
+  // yet place itself in the map of the region it re-entered after a loop.
+  std::uint32_t scans_into_anchor_map = 0;
   std::uint32_t submap_restarts = 0;         // after a long rejection streak (FrontEndConfig)
   // Rejection streaks (consecutive rejected first registrations): the scans in them, the time
   // they covered (each scan counts the time since the previous scan), the longest one.

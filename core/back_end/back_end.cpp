@@ -29,6 +29,7 @@ void BackEnd::Init(const BackEndConfig& config, float region_width_m, std::int16
   counters_ = BackEndCounters{};
   s_.graph->Clear();
   job_head_ = job_count_ = 0;
+  search_region_ = -1;
 }
 
 void BackEnd::Push(std::int32_t job) {
@@ -78,6 +79,20 @@ void BackEnd::OnRegionLeft(Span<RegionalMap> regions, int index) {
 
 BackEnd::StepResult BackEnd::Step(Span<RegionalMap> regions) {
   StepResult out;
+  if (searching()) {
+    // The map-to-map jobs would rebuild the reference whose table the search holds: they wait.
+    // The last slice and the refinement never share a scan.
+    out.used_reference = true;
+    if (search_begun_this_scan_) {
+      search_begun_this_scan_ = false;  // building its grid was this scan's share
+    } else if (search_.done()) {
+      out.loop_search_done = true;
+    } else {
+      (void)search_.Continue(*s_.match_grid, Span<const Point2>(s_.cloud.data(), search_points_), config_.search,
+                             s_.rotated, static_cast<std::uint32_t>(config_.search_evaluations_per_step));
+    }
+    return out;
+  }
   if (job_count_ == 0) return out;
   const std::int32_t job = s_.jobs[static_cast<std::size_t>(job_head_)];
   job_head_ = (job_head_ + 1) % static_cast<int>(s_.jobs.size());
@@ -155,19 +170,18 @@ void BackEnd::WriteAnchors(Span<RegionalMap> regions) const {
   for (int i = 0; i < s_.graph->vertex_count(); ++i) regions[static_cast<std::size_t>(i)].anchor = s_.graph->vertex(i);
 }
 
-LoopClosureResult BackEnd::TryLoopClosure(Span<RegionalMap> regions, int region, int from, Span<const Point2> cloud,
-                                          const Pose2& submap_world, float path_m) {
-  LoopClosureResult out;
+bool BackEnd::BeginLoopClosure(Span<RegionalMap> regions, int region, int from, Span<const Point2> cloud,
+                               const Pose2& submap_world, float path_m) {
   PoseGraph& g = *s_.graph;
   if (!config_.enable || region < 0 || from < 0 || region == from || region >= g.vertex_count() ||
       from >= g.vertex_count() || cloud.size() < 20) {
-    return out;
+    return false;
   }
   ++counters_.loop_searches;
   const RegionalMap& map = regions[static_cast<std::size_t>(region)];
-  // 1. Where is the submap in the map? A search over the window the drift allows.
+  // Where is the submap in the map? A search over the window the drift allows, on a grid in
+  // memory lent by the region reference until the search is done.
   s_.match_grid->Attach(s_.reference->LendTable());
-  out.used_reference = true;
   s_.match_grid->Build(*map.grid, map.grid->box(), config_.match_grid_coarsen, obstacle_threshold_);
   const std::size_t stride = (cloud.size() + static_cast<std::size_t>(config_.search_points) - 1) /
                              static_cast<std::size_t>(config_.search_points);
@@ -176,19 +190,38 @@ LoopClosureResult BackEnd::TryLoopClosure(Span<RegionalMap> regions, int region,
   const Pose2 guess = Between(map.anchor, submap_world);
   const float window_m = std::fmin(config_.search_base_m + config_.search_per_metre_m * path_m, config_.search_max_m);
   const float window_rad = std::fmin(config_.search_base_rad + config_.search_per_metre_rad * path_m, config_.search_max_rad);
-  const CorrelativeSearchResult found = CorrelativeSearch(*s_.match_grid, Span<const Point2>(s_.cloud.data(), n), guess,
-                                                          window_m, window_rad, config_.search, s_.rotated);
-  out.search_score = found.score;
+  search_.Begin(*s_.match_grid, Span<const Point2>(s_.cloud.data(), n), guess, window_m, window_rad, config_.search);
+  search_region_ = region;
+  search_begun_this_scan_ = true;
+  search_from_ = from;
+  search_submap_world_ = submap_world;
+  search_points_ = n;
   trace_ = ClosureTrace{};
   trace_.region = region;
   trace_.from = from;
   trace_.path_m = path_m;
   trace_.window_m = window_m;
-  trace_.search = found;
   trace_.guess = guess;
-  // A weak or ambiguous search: the guess itself may still be within PLICP's basin.
-  const Pose2 start = found.verdict == Status::kOk ? found.pose : guess;
-  // 2. Refined by PLICP against the map's lines.
+  return true;
+}
+
+LoopClosureResult BackEnd::FinishLoopClosure(Span<RegionalMap> regions, Span<const Point2> cloud,
+                                             const Pose2& submap_world) {
+  LoopClosureResult out;
+  const int region = search_region_, from = search_from_;
+  search_region_ = -1;
+  if (region < 0 || !search_.done()) return out;
+  out.used_reference = true;
+  const CorrelativeSearchResult& found = search_.result();
+  out.search_score = found.score;
+  trace_.search = found;
+  const RegionalMap& map = regions[static_cast<std::size_t>(region)];
+  // The search placed the submap as it was when the search began; the submap has moved since by
+  // what the front end measured: carry the answer (or, when the search is weak or ambiguous, the
+  // guess, which may still be within PLICP's basin) along.
+  const Pose2 moved = search_submap_world_.Inverse() * submap_world;
+  const Pose2 start = (found.verdict == Status::kOk ? found.pose : trace_.guess) * moved;
+  // Refined by PLICP against the map's lines.
   BuildReference(map);
   const RegistrationResult r =
       RegisterImproved(*s_.reference, cloud, start, nullptr, config_.closure_registration, s_.correspondences);

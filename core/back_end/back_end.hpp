@@ -6,8 +6,11 @@
 // graph agrees). Gauss–Newton moves the anchors; the caller moves the robot with its region.
 //
 // Bounded work per scan: leaving a region queues jobs (one registration per neighbour, then one
-// optimisation); Step() runs at most one per scan. A loop closure runs at once (the robot must
-// not insert scans into the re-entered map at a drifted pose), and costs one search.
+// optimisation); Step() runs at most one per scan. A loop-closure search runs in slices, one per
+// Step from the scan after the one that built its grid (a wide window costs up to ~10^8
+// instructions), before any queued job; its refinement and the graph's verdict run in the scan
+// after the last slice. Meanwhile the robot maps into the map
+// its pose is known in, not the re-entered one.
 // Size-erased over BackEndStorage; Mapper<Profile> owns the arrays.
 #pragma once
 
@@ -47,7 +50,7 @@ struct BackEndStorage {
   // caller rebuilds its reference (StepResult::used_reference).
   RegistrationReference* reference = nullptr;
   Span<Point2> cloud;       // a region's obstacle cloud, max_cloud_points
-  Span<Point2> rotated;     // search scratch, search_points
+  Span<MatchCell> rotated;  // search scratch, search_points
   Span<Correspondence> correspondences;
   Span<std::int32_t> jobs;  // queued jobs, at least regions + 1
 };
@@ -91,16 +94,26 @@ class BackEnd {
   struct StepResult {
     bool anchors_moved = false;  // regions[i].anchor were rewritten
     bool used_reference = false;
+    bool loop_search_done = false;  // FinishLoopClosure is due
   };
-  // Runs at most one queued job.
+  // Runs one slice of a loop-closure search under way, or else at most one queued job.
   StepResult Step(Span<RegionalMap> regions);
 
   // Re-entering region `region` from `from` with the submap at `submap_world` (the front end's
   // estimate) after `path_m` metres since the robot last registered against that map. `cloud`:
-  // the submap's obstacle cells in the submap frame. On kOk the anchors have moved (written into
-  // regions) and the submap belongs at regions[region].anchor * submap_in_region.
-  LoopClosureResult TryLoopClosure(Span<RegionalMap> regions, int region, int from, Span<const Point2> cloud,
-                                   const Pose2& submap_world, float path_m);
+  // the submap's obstacle cells in the submap frame. Starts the search (false: none started);
+  // until Step reports it done, the region reference's table is the search's (searching()).
+  bool BeginLoopClosure(Span<RegionalMap> regions, int region, int from, Span<const Point2> cloud,
+                        const Pose2& submap_world, float path_m);
+  // After Step reported the search done: refines its answer with the submap as it is now (`cloud`,
+  // at `submap_world`; the drift since the search began is the front end's, and small) and offers
+  // the closure to the graph. On kOk the anchors have moved (written into regions) and the submap
+  // belongs at regions[region].anchor * submap_in_region.
+  LoopClosureResult FinishLoopClosure(Span<RegionalMap> regions, Span<const Point2> cloud, const Pose2& submap_world);
+  // Drops a search under way (the robot left the region it searched for).
+  void CancelLoopClosure() { search_region_ = -1; }
+  bool searching() const { return search_region_ >= 0; }
+  int search_region() const { return search_region_; }
 
   // A registration of the submap (at `submap_world` before it) to region `region`'s map alone,
   // made while the robot's pose was known in region `from`: the same closure edge, without the
@@ -131,6 +144,14 @@ class BackEnd {
   std::int16_t obstacle_threshold_ = 3000;
   BackEndCounters counters_;
   ClosureTrace trace_;
+  // The loop-closure search under way: its region, the anchor map, the submap's world pose when it
+  // began, the number of thinned cloud points in s_.cloud.
+  CorrelativeSearchRun search_;
+  int search_region_ = -1;
+  int search_from_ = -1;
+  bool search_begun_this_scan_ = false;
+  Pose2 search_submap_world_;
+  std::size_t search_points_ = 0;
   int job_head_ = 0;
   int job_count_ = 0;
 };

@@ -16,11 +16,12 @@ constexpr PlicpConfig MapRegistrationConfig() {
 }
 
 // PLICP refining a closure: the submap reaches past the re-entered map's box and sees what that
-// map never saw, so a third of its points may find no wall in it; the search's uniqueness and
-// the graph's consistency check guard against a wrong fit.
+// map never saw, so some of its points find no wall in it; but at least half must: a refinement
+// that fits a third of the submap (a weak or ambiguous search, refined from the guess) fitted
+// whatever wall was near, and the graph took such closures because they agreed with the drift.
 constexpr PlicpConfig ClosureRegistrationConfig() {
   PlicpConfig c;
-  c.min_inlier_ratio = 0.3f;
+  c.min_inlier_ratio = 0.5f;
   c.max_mean_residual_m = 0.06f;
   return c;
 }
@@ -59,6 +60,9 @@ struct BackEndConfig {
   float search_per_metre_rad = 0.002f;
   float search_max_rad = 0.35f;
   int search_points = 200;
+  // Poses and bounds a search slice evaluates (each ~200 likelihood look-ups, ~2-3 k instructions);
+  // a slice sweeps blocks of offsets, one at least, and starts another only if its worst case fits.
+  int search_evaluations_per_step = 3000;
   int match_grid_coarsen = 2;  // match cells of 2 x 2 grid cells (10 cm)
   CorrelativeSearchConfig search;
   // Map-to-map registrations; the refinement of a closure (the submap lies inside the map it

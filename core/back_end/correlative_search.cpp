@@ -137,60 +137,17 @@ std::uint8_t MatchGrid::At(Point2 p) const {
 
 namespace {
 
-struct Peak {
-  float score = -1.0f;
-  int ox = 0, oy = 0;
-  float dtheta = 0.0f;
-};
+using Peak = SearchPeak;
 
 bool Excluded(const Peak* exclude, bool angle_far, int ox, int oy, int sep_cells) {
   return exclude != nullptr && !angle_far && std::abs(ox - exclude->ox) < sep_cells && std::abs(oy - exclude->oy) < sep_cells;
 }
 
-// The poses that scored within max_second_ratio of the best so far: the only ones that can be the
-// separate peak that makes a search ambiguous. Bounded; when it overflows (a long ridge of near-
-// best poses, e.g. a corridor) the search takes a second sweep instead.
-class NearBest {
- public:
-  void Add(const Peak& p, float floor) {
-    if (size_ == kCapacity) Drop(floor);
-    if (size_ == kCapacity) {
-      overflow_ = true;
-      return;
-    }
-    peaks_[size_++] = p;
-  }
-  bool overflow() const { return overflow_; }
-  // The best score among the poses separated from `best` (the second sweep's rule), -1 if none.
-  float BestSeparated(const Peak& best, float separation_rad, int sep_cells) const {
-    float out = -1.0f;
-    for (int i = 0; i < size_; ++i) {
-      const Peak& p = peaks_[i];
-      const bool angle_far = std::fabs(p.dtheta - best.dtheta) >= separation_rad;
-      if (!Excluded(&best, angle_far, p.ox, p.oy, sep_cells) && p.score > out) out = p.score;
-    }
-    return out;
-  }
-
- private:
-  void Drop(float floor) {
-    int kept = 0;
-    for (int i = 0; i < size_; ++i) {
-      if (peaks_[i].score >= floor) peaks_[kept++] = peaks_[i];
-    }
-    size_ = kept;
-  }
-  static constexpr int kCapacity = 24;
-  Peak peaks_[kCapacity];
-  int size_ = 0;
-  bool overflow_ = false;
-};
-
-struct SweepPlan {
-  Pose2 initial;
-  int n_offsets = 0, n_angles = 0;
-  float step = 0.0f;
-};
+// A coordinate in match cells, clamped far outside any grid (no wrap-around of int16).
+std::int16_t ToMatchCell(float cells) {
+  constexpr float kFarOutside = 16000.0f;
+  return static_cast<std::int16_t>(FloorToInt(std::fmax(-kFarOutside, std::fmin(kFarOutside, cells))));
+}
 
 // Angles from the guess outwards (0, +1, -1, +2, ...): a good pose found early prunes the rest.
 int AngleAt(int k) { return (k % 2 == 1) ? (k + 1) / 2 : -(k / 2); }
@@ -198,20 +155,20 @@ int AngleAt(int k) { return (k % 2 == 1) ? (k + 1) / 2 : -(k / 2); }
 // The sums over the cloud (offset by whole match cells) of a grid's likelihoods and of its bounds.
 struct CloudScorer {
   const MatchGrid& grid;
-  Span<const Point2> cells;  // the rotated cloud in match cells
+  Span<const MatchCell> cells;  // the rotated cloud
   std::uint32_t Score(int ox, int oy) const {
     std::uint32_t sum = 0;
-    for (const Point2& c : cells) sum += grid.AtCell(static_cast<int>(c.x) + ox, static_cast<int>(c.y) + oy);
+    for (const MatchCell& c : cells) sum += grid.AtCell(c.x + ox, c.y + oy);
     return sum;
   }
   std::uint32_t Bound(int bx, int by) const {
     std::uint32_t sum = 0;
-    for (const Point2& c : cells) sum += grid.BoundAt(static_cast<int>(c.x) + bx, static_cast<int>(c.y) + by);
+    for (const MatchCell& c : cells) sum += grid.BoundAt(c.x + bx, c.y + by);
     return sum;
   }
   std::uint32_t CoarseBound(int bx, int by) const {
     std::uint32_t sum = 0;
-    for (const Point2& c : cells) sum += grid.CoarseBoundAt(static_cast<int>(c.x) + bx, static_cast<int>(c.y) + by);
+    for (const MatchCell& c : cells) sum += grid.CoarseBoundAt(c.x + bx, c.y + by);
     return sum;
   }
 };
@@ -220,12 +177,12 @@ struct CloudScorer {
 // sweep) the best pose to stay away from.
 struct SweepState {
   Peak best;
-  NearBest* near_best = nullptr;
+  NearBestPeaks* near_best = nullptr;
   const Peak* exclude = nullptr;
   float ratio = 1.0f;      // max_second_ratio
   int sep_cells = 0;
   bool angle_far = true;   // this angle is far from `exclude`'s
-  std::uint32_t* evaluated = nullptr;
+  std::uint32_t evaluated = 0;
 
   // A block whose bound cannot reach what this sweep still looks for.
   bool Prune(std::uint32_t bound) const {
@@ -244,90 +201,179 @@ void ScoreBlock(const CloudScorer& scorer, int bx, int by, int n, float dtheta, 
   for (int oy = by; oy < by + kB && oy <= n; ++oy) {
     for (int ox = bx; ox < bx + kB && ox <= n; ++ox) {
       if (Excluded(st->exclude, st->angle_far, ox, oy, st->sep_cells)) continue;
-      ++*st->evaluated;
-      st->Offer(Peak{static_cast<float>(scorer.Score(ox, oy)), ox, oy, dtheta});
+      ++st->evaluated;
+      st->Offer(Peak{static_cast<float>(scorer.Score(ox, oy)), static_cast<std::int16_t>(ox), static_cast<std::int16_t>(oy), dtheta});
     }
   }
 }
 
-// One sweep over the window: per angle, kCoarseBlock squares of offsets pruned by their bound,
-// then the kBlock squares inside, then the offsets. With `exclude` set, poses within the
-// separation of it are skipped (the search for a second, separate peak); without, the poses within
-// max_second_ratio of the best go to `near_best`, and only blocks that cannot reach that ratio are
-// pruned.
-Peak Sweep(const MatchGrid& grid, Span<const Point2> points, const SweepPlan& plan, const Peak* exclude,
-           NearBest* near_best, const CorrelativeSearchConfig& config, Span<Point2> rotated, std::uint32_t* evaluated) {
+// One angle of a sweep starts: the cloud rotated by `dtheta` into whole match cells, and (first
+// angle of the first sweep) the guess itself scored: a good score from the start prunes most blocks.
+void BeginAngle(const MatchGrid& grid, Span<const Point2> points, Pose2 initial, float dtheta, bool first_angle,
+                const CorrelativeSearchConfig& config, Span<MatchCell> rotated, SweepState* st) {
   const float inv_res = 1.0f / grid.resolution_m();
-  SweepState st;
-  st.near_best = near_best;
-  st.exclude = exclude;
-  st.ratio = config.max_second_ratio;
-  st.sep_cells = static_cast<int>(config.peak_separation_m * inv_res);
-  st.evaluated = evaluated;
+  st->angle_far = st->exclude == nullptr || std::fabs(dtheta - st->exclude->dtheta) >= config.peak_separation_rad;
+  const PointTransform t(Pose2{initial.x, initial.y, initial.theta + dtheta});
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Point2 w = t(points[i]);
+    // Whole match cells: every offset below moves all points by whole cells.
+    rotated[i] = MatchCell{ToMatchCell((w.x - grid.origin().x) * inv_res), ToMatchCell((w.y - grid.origin().y) * inv_res)};
+  }
+  if (first_angle && st->exclude == nullptr) {
+    const CloudScorer scorer{grid, Span<const MatchCell>(rotated.data(), points.size())};
+    ++st->evaluated;
+    st->Offer(Peak{static_cast<float>(scorer.Score(0, 0)), 0, 0, 0.0f});
+  }
+}
+
+// One kCoarseBlock square of offsets (corner cx, cy) at the current angle: pruned by its bound,
+// else the kBlock squares inside, each pruned by its bound or scored offset by offset. With
+// `exclude` set, poses within the separation of it are skipped (the search for a second, separate
+// peak); without, the poses within max_second_ratio of the best go to `near_best`, and only
+// blocks that cannot reach that ratio are pruned.
+void SweepCoarseBlock(const MatchGrid& grid, std::size_t points, int cx, int cy, int n, float dtheta,
+                      Span<const MatchCell> rotated, SweepState* st) {
   constexpr int kB = MatchGrid::kBlock, kC = MatchGrid::kCoarseBlock;
-  const int n = plan.n_offsets;
-  const CloudScorer scorer{grid, Span<const Point2>(rotated.data(), points.size())};
-  for (int k = 0; k <= 2 * plan.n_angles; ++k) {
-    const float dtheta = static_cast<float>(AngleAt(k)) * plan.step;
-    st.angle_far = exclude == nullptr || std::fabs(dtheta - exclude->dtheta) >= config.peak_separation_rad;
-    const PointTransform t(Pose2{plan.initial.x, plan.initial.y, plan.initial.theta + dtheta});
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const Point2 w = t(points[i]);
-      // Whole match cells: every offset below moves all points by whole cells.
-      rotated[i] = Point2{static_cast<float>(FloorToInt((w.x - grid.origin().x) * inv_res)),
-                          static_cast<float>(FloorToInt((w.y - grid.origin().y) * inv_res))};
-    }
-    // The guess itself first: a good score from the start prunes most blocks.
-    if (k == 0 && exclude == nullptr) {
-      ++*evaluated;
-      st.Offer(Peak{static_cast<float>(scorer.Score(0, 0)), 0, 0, 0.0f});
-    }
-    for (int cy = -n; cy <= n; cy += kC) {
-      for (int cx = -n; cx <= n; cx += kC) {
-        ++*evaluated;
-        if (st.Prune(scorer.CoarseBound(cx, cy))) continue;
-        for (int by = cy; by < cy + kC && by <= n; by += kB) {
-          for (int bx = cx; bx < cx + kC && bx <= n; bx += kB) {
-            ++*evaluated;
-            if (!st.Prune(scorer.Bound(bx, by))) ScoreBlock(scorer, bx, by, n, dtheta, &st);
-          }
-        }
-      }
+  const CloudScorer scorer{grid, Span<const MatchCell>(rotated.data(), points)};
+  ++st->evaluated;
+  if (st->Prune(scorer.CoarseBound(cx, cy))) return;
+  for (int by = cy; by < cy + kC && by <= n; by += kB) {
+    for (int bx = cx; bx < cx + kC && bx <= n; bx += kB) {
+      ++st->evaluated;
+      if (!st->Prune(scorer.Bound(bx, by))) ScoreBlock(scorer, bx, by, n, dtheta, st);
     }
   }
-  return st.best;
 }
 
 }  // namespace
 
-CorrelativeSearchResult CorrelativeSearch(const MatchGrid& grid, Span<const Point2> points, Pose2 initial,
-                                          float window_m, float window_rad, const CorrelativeSearchConfig& config,
-                                          Span<Point2> rotated) {
-  CorrelativeSearchResult result;
-  result.pose = initial;
-  if (points.size() < 10 || grid.width() == 0 || rotated.size() < points.size()) return result;
+void NearBestPeaks::Add(const SearchPeak& p, float floor) {
+  if (size_ == kCapacity) Drop(floor);
+  if (size_ == kCapacity) {
+    overflow_ = true;
+    return;
+  }
+  peaks_[size_++] = p;
+}
+
+float NearBestPeaks::BestSeparated(const SearchPeak& best, float separation_rad, int sep_cells) const {
+  float out = -1.0f;
+  for (int i = 0; i < size_; ++i) {
+    const SearchPeak& p = peaks_[i];
+    const bool angle_far = std::fabs(p.dtheta - best.dtheta) >= separation_rad;
+    if (!Excluded(&best, angle_far, p.ox, p.oy, sep_cells) && p.score > out) out = p.score;
+  }
+  return out;
+}
+
+void NearBestPeaks::Drop(float floor) {
+  int kept = 0;
+  for (int i = 0; i < size_; ++i) {
+    if (peaks_[i].score >= floor) peaks_[kept++] = peaks_[i];
+  }
+  size_ = kept;
+}
+
+void CorrelativeSearchRun::Begin(const MatchGrid& grid, Span<const Point2> points, Pose2 initial, float window_m,
+                                 float window_rad, const CorrelativeSearchConfig& config) {
+  result_ = CorrelativeSearchResult{};
+  result_.pose = initial;
+  phase_ = Phase::kDone;
+  if (points.size() < 10 || grid.width() == 0) return;
   float max_range = 0.0f;
   for (const Point2& p : points) max_range = std::fmax(max_range, std::sqrt(p.x * p.x + p.y * p.y));
   float step = grid.resolution_m() / std::fmax(max_range, 1.0f);
   step = std::fmin(std::fmax(step, config.min_angle_step_rad), config.max_angle_step_rad);
-  const SweepPlan plan{initial, static_cast<int>(window_m / grid.resolution_m()), static_cast<int>(window_rad / step), step};
-  // One sweep finds the best pose and keeps the poses close to it in score; only when too many
-  // are (a ridge) does a second sweep look for the best pose away from the best.
-  NearBest near_best;
-  const Peak best = Sweep(grid, points, plan, nullptr, &near_best, config, rotated, &result.poses_evaluated);
+  initial_ = initial;
+  n_offsets_ = static_cast<int>(window_m / grid.resolution_m());
+  n_angles_ = static_cast<int>(window_rad / step);
+  step_ = step;
+  next_angle_ = 0;
+  next_block_ = 0;
+  best_ = SearchPeak{};
+  near_best_.Clear();
+  phase_ = Phase::kFirstSweep;
+}
+
+bool CorrelativeSearchRun::Continue(const MatchGrid& grid, Span<const Point2> points, const CorrelativeSearchConfig& config,
+                                    Span<MatchCell> rotated, std::uint32_t max_evaluations) {
+  if (phase_ == Phase::kDone) return true;
+  if (rotated.size() < points.size()) {
+    phase_ = Phase::kDone;
+    return true;
+  }
+  // The first sweep finds the best pose and keeps the poses close to it in score; only when too
+  // many are (a ridge) does a second sweep look for the best pose away from the best.
+  const bool second = phase_ == Phase::kSecondSweep;
+  SweepState st;
+  st.best = best_;
+  st.near_best = second ? nullptr : &near_best_;
+  st.exclude = second ? &first_best_ : nullptr;
+  st.ratio = config.max_second_ratio;
+  st.sep_cells = static_cast<int>(config.peak_separation_m / grid.resolution_m());
+  st.angle_far = angle_far_;
+  constexpr int kC = MatchGrid::kCoarseBlock;
+  const int n = n_offsets_, last = 2 * n_angles_;
+  const int per_row = (2 * n) / kC + 1, blocks = per_row * per_row;
+  // Evaluations of one coarse block when nothing is pruned: a slice stops before one that might
+  // not fit (but always does one).
+  constexpr std::uint32_t kWorstBlock = kC * kC + (kC / MatchGrid::kBlock) * (kC / MatchGrid::kBlock) + 1;
+  bool first = true;
+  while (next_angle_ <= last && (first || st.evaluated + kWorstBlock <= max_evaluations)) {
+    first = false;
+    const float dtheta = static_cast<float>(AngleAt(next_angle_)) * step_;
+    if (next_block_ == 0) BeginAngle(grid, points, initial_, dtheta, next_angle_ == 0, config, rotated, &st);
+    SweepCoarseBlock(grid, points.size(), -n + (next_block_ % per_row) * kC, -n + (next_block_ / per_row) * kC, n, dtheta,
+                     Span<const MatchCell>(rotated.data(), points.size()), &st);
+    if (++next_block_ == blocks) {
+      next_block_ = 0;
+      ++next_angle_;
+    }
+  }
+  best_ = st.best;
+  angle_far_ = st.angle_far;
+  result_.poses_evaluated += st.evaluated;
+  if (next_angle_ <= last) return false;
+  if (!second && near_best_.overflow()) {
+    first_best_ = best_;
+    best_ = SearchPeak{};
+    next_angle_ = 0;
+    phase_ = Phase::kSecondSweep;
+    return false;
+  }
   const int sep_cells = static_cast<int>(config.peak_separation_m / grid.resolution_m());
-  const float second = near_best.overflow()
-                           ? Sweep(grid, points, plan, &best, nullptr, config, rotated, &result.poses_evaluated).score
-                           : near_best.BestSeparated(best, config.peak_separation_rad, sep_cells);
+  if (second) {
+    const float second_score = best_.score;
+    best_ = first_best_;
+    Finish(grid, points, config, second_score);
+  } else {
+    Finish(grid, points, config, near_best_.BestSeparated(best_, config.peak_separation_rad, sep_cells));
+  }
+  return true;
+}
+
+void CorrelativeSearchRun::Finish(const MatchGrid& grid, Span<const Point2> points, const CorrelativeSearchConfig& config,
+                                  float second) {
   const float norm = 1.0f / (255.0f * static_cast<float>(points.size()));
-  result.score = best.score * norm;
-  result.second_score = second > 0.0f ? second * norm : 0.0f;
-  result.pose = Pose2{initial.x + static_cast<float>(best.ox) * grid.resolution_m(),
-                      initial.y + static_cast<float>(best.oy) * grid.resolution_m(), NormalizeAngle(initial.theta + best.dtheta)};
-  const bool strong = result.score >= config.min_score;
-  const bool unique = result.second_score < config.max_second_ratio * result.score;
-  result.verdict = strong && unique ? Status::kOk : Status::kRejected;
-  return result;
+  result_.score = best_.score * norm;
+  result_.second_score = second > 0.0f ? second * norm : 0.0f;
+  result_.pose = Pose2{initial_.x + static_cast<float>(best_.ox) * grid.resolution_m(),
+                       initial_.y + static_cast<float>(best_.oy) * grid.resolution_m(),
+                       NormalizeAngle(initial_.theta + best_.dtheta)};
+  const bool strong = result_.score >= config.min_score;
+  const bool unique = result_.second_score < config.max_second_ratio * result_.score;
+  result_.verdict = strong && unique ? Status::kOk : Status::kRejected;
+  phase_ = Phase::kDone;
+}
+
+CorrelativeSearchResult CorrelativeSearch(const MatchGrid& grid, Span<const Point2> points, Pose2 initial,
+                                          float window_m, float window_rad, const CorrelativeSearchConfig& config,
+                                          Span<MatchCell> rotated) {
+  CorrelativeSearchRun run;
+  run.Begin(grid, points, initial, window_m, window_rad, config);
+  while (!run.Continue(grid, points, config, rotated, 0xFFFFFFFFu)) {
+  }
+  return run.result();
 }
 
 }  // namespace dpcr

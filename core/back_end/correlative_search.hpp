@@ -110,6 +110,71 @@ struct CorrelativeSearchResult {
   Status verdict = Status::kNotEnoughData;  // kOk, kRejected (weak or ambiguous), kNotEnoughData
 };
 
+// A point of the rotated cloud in whole match cells of the grid (the search's scratch: half the
+// bytes of a Point2, and no float-to-int conversion per look-up).
+struct MatchCell {
+  std::int16_t x = 0;
+  std::int16_t y = 0;
+};
+
+// One pose of a search: its summed likelihood, its offset in match cells, its rotation.
+struct SearchPeak {
+  float score = -1.0f;
+  std::int16_t ox = 0, oy = 0;
+  float dtheta = 0.0f;
+};
+
+// The poses that scored within max_second_ratio of the best so far: the only ones that can be the
+// separate peak that makes a search ambiguous. Bounded; when it overflows (a long ridge of near-
+// best poses, e.g. a corridor) the search takes a second sweep instead.
+class NearBestPeaks {
+ public:
+  void Clear() { size_ = 0; overflow_ = false; }
+  void Add(const SearchPeak& p, float floor);
+  bool overflow() const { return overflow_; }
+  // The best score among the poses separated from `best` (the second sweep's rule), -1 if none.
+  float BestSeparated(const SearchPeak& best, float separation_rad, int sep_cells) const;
+
+ private:
+  void Drop(float floor);
+  static constexpr int kCapacity = 24;
+  SearchPeak peaks_[kCapacity];
+  int size_ = 0;
+  bool overflow_ = false;
+};
+
+// A search in bounded steps, so that a wide window (metres, tenths of a radian: up to ~10^8
+// instructions) does not stall the scan loop: Begin plans it, each Continue sweeps blocks of
+// offsets (kCoarseBlock squares, angle by angle) until it has evaluated about a given number of
+// poses and bounds, and the answer is the same as CorrelativeSearch's. The grid and the points must not change between Begin and done().
+class CorrelativeSearchRun {
+ public:
+  void Begin(const MatchGrid& grid, Span<const Point2> points, Pose2 initial, float window_m, float window_rad,
+             const CorrelativeSearchConfig& config);
+  // True once the search is done (at once when there is nothing to search).
+  bool Continue(const MatchGrid& grid, Span<const Point2> points, const CorrelativeSearchConfig& config,
+                Span<MatchCell> rotated, std::uint32_t max_evaluations);
+  bool done() const { return phase_ == Phase::kDone; }
+  // Valid once done().
+  const CorrelativeSearchResult& result() const { return result_; }
+
+ private:
+  enum class Phase : std::uint8_t { kDone, kFirstSweep, kSecondSweep };
+  void Finish(const MatchGrid& grid, Span<const Point2> points, const CorrelativeSearchConfig& config, float second);
+
+  Phase phase_ = Phase::kDone;
+  Pose2 initial_;
+  int n_offsets_ = 0, n_angles_ = 0;
+  float step_ = 0.0f;
+  int next_angle_ = 0;          // index into the sweep order (0, +1, -1, +2, ...)
+  int next_block_ = 0;          // the next coarse block of offsets at that angle, row by row
+  bool angle_far_ = true;       // that angle is far from the first sweep's best (second sweep)
+  SearchPeak best_;             // of the sweep under way
+  SearchPeak first_best_;       // the first sweep's, excluded by the second
+  NearBestPeaks near_best_;
+  CorrelativeSearchResult result_;
+};
+
 // Searches poses within +-window_m (x, y) and +-window_rad around `initial` for the cloud
 // `points` (in its own frame): every angle, translations by branch and bound (blocks of
 // kBlock x kBlock offsets scored by their upper bound first; only blocks that could beat the best
@@ -117,6 +182,6 @@ struct CorrelativeSearchResult {
 // (at least points.size() entries).
 CorrelativeSearchResult CorrelativeSearch(const MatchGrid& grid, Span<const Point2> points, Pose2 initial,
                                           float window_m, float window_rad, const CorrelativeSearchConfig& config,
-                                          Span<Point2> rotated);
+                                          Span<MatchCell> rotated);
 
 }  // namespace dpcr

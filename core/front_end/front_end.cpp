@@ -115,27 +115,31 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
     EnterRegion(true);
   } else if (tracker_.Update(Point2{world.x, world.y})) {
     EnterRegion(false);
-  } else if (lost_in_region_) {
-    // Retry once the robot has moved on enough to see something new.
-    if (++scans_since_closure_try_ >= static_cast<std::uint32_t>(config_.back_end.loop_retry_scans) &&
+  } else if (!back_end_.searching()) {
+    // Not placed in the current map yet: retry once the robot has moved on enough to see
+    // something new; meanwhile it keeps registering to (and mapping into) its anchor map. While
+    // a search runs, the region reference's table is the search's: no second registration.
+    if (lost_in_region_ && ++scans_since_closure_try_ >= static_cast<std::uint32_t>(config_.back_end.loop_retry_scans) &&
         path_m_ - path_at_closure_try_ >= config_.back_end.loop_retry_path_m) {
       scans_since_closure_try_ = 0;
-      lost_in_region_ = !TryLoopClosure(anchor_region_);
-      if (!lost_in_region_) anchor_region_ = regions_.current();
+      BeginLoopClosure(anchor_region_);
+    } else if (config_.front_end.enable_registration &&
+               ++scans_since_second_ >= static_cast<std::uint32_t>(config_.front_end.second_registration_period)) {
+      SecondRegistration();
     }
-  } else if (config_.front_end.enable_registration &&
-             ++scans_since_second_ >= static_cast<std::uint32_t>(config_.front_end.second_registration_period)) {
-    SecondRegistration();
   }
-  // 4b. Once into the current regional map (not while the robot cannot place itself in it, nor
-  // a scan kept out above).
-  if (lost_in_region_ || keep_out) {
+  // 4b. Once into the current regional map, or the anchor map while the robot cannot place
+  // itself in the current one; not a scan kept out above.
+  if (keep_out) {
     ++counters_.scans_not_inserted;
     // Its pose is still known in the anchor region's frame.
     last_scan_region_ = anchor_region_ >= 0 ? anchor_region_ : regions_.current();
     if (last_scan_region_ >= 0) last_scan_in_region_ = Between(regions_[last_scan_region_].anchor, pose());
+  } else if (lost_in_region_ && anchor_region_ >= 0) {
+    ++counters_.scans_into_anchor_map;
+    InsertIntoRegion(projected, anchor_region_);
   } else {
-    InsertIntoRegion(projected);
+    InsertIntoRegion(projected, regions_.current());
   }
   // 5. Back end: at most one queued job.
   StepBackEnd();
@@ -239,6 +243,8 @@ void FrontEnd::RegisterScan(std::size_t hits, const Pose2& predicted) {
 }
 
 void FrontEnd::EnterRegion(bool first) {
+  // A search for the map the robot just left has lost its point.
+  if (back_end_.searching()) back_end_.CancelLoopClosure();
   const RegionKey key = tracker_.current();
   const int left = regions_.current();
   switch (regions_.Enter(key, tracker_.Centre(key))) {
@@ -277,10 +283,12 @@ bool FrontEnd::WellInside(const RegionalMap& r) const {
          local.x <= static_cast<float>(box.max.x) * res - margin && local.y <= static_cast<float>(box.max.y) * res - margin;
 }
 
-int FrontEnd::ReferenceMaps(int (&maps)[2]) const {
+int FrontEnd::ReferenceMaps(int (&maps)[2], bool loop_entry) const {
   const FrontEndConfig& f = config_.front_end;
   const auto scans = [&](int i) { return regions_[i].scans_inserted; };
-  const int current = regions_.current(), previous = regions_.previous();
+  const bool in_anchor = lost_in_region_ && !loop_entry && anchor_region_ >= 0;
+  const int current = in_anchor ? anchor_region_ : regions_.current(), previous = regions_.previous();
+  const bool map_alone = loop_entry || in_anchor;
   int n = 0;
   // The current map, once it holds more than the submap it was seeded from.
   if (current >= 0 && scans(current) >= static_cast<std::uint32_t>(f.submap_scans)) maps[n++] = current;
@@ -289,17 +297,17 @@ int FrontEnd::ReferenceMaps(int (&maps)[2]) const {
   // keep its own heading (across a border, neighbouring maps disagreed by up to 0.7 deg). Only that
   // one: an older map seen again after a long loop may disagree with the drift accumulated since,
   // and reconciling them is the back end's job.
-  if (previous >= 0 && scans(previous) >= static_cast<std::uint32_t>(f.region_mature_scans) &&
+  if (!map_alone && previous >= 0 && previous != current && scans(previous) >= static_cast<std::uint32_t>(f.region_mature_scans) &&
       WellInside(regions_[previous])) {
     maps[n++] = previous;
   }
   return n;
 }
 
-bool FrontEnd::SecondRegistration(RegistrationResult* result, int* region) {
+bool FrontEnd::SecondRegistration(RegistrationResult* result, int* region, bool loop_entry) {
   scans_since_second_ = 0;
   int maps[2] = {-1, -1};
-  const int n = ReferenceMaps(maps);
+  const int n = ReferenceMaps(maps, loop_entry);
   if (n == 0) return false;
   RegionalMap& r = regions_[maps[0]];
   const FrontEndConfig& f = config_.front_end;
@@ -358,8 +366,8 @@ RegistrationResult FrontEnd::RegisterSubmap(RegionalMap& r) {
   return res;
 }
 
-void FrontEnd::InsertIntoRegion(const ProjectedScan& projected) {
-  last_scan_region_ = regions_.current();
+void FrontEnd::InsertIntoRegion(const ProjectedScan& projected, int index) {
+  last_scan_region_ = index;
   if (last_scan_region_ >= 0) {
     RegionalMap& r = regions_[last_scan_region_];
     last_scan_in_region_ = Between(r.anchor, pose());
@@ -368,7 +376,7 @@ void FrontEnd::InsertIntoRegion(const ProjectedScan& projected) {
   // The submap already copied the robot-frame points: they may move into the region's frame.
   const InsertionStats st = regions_.InsertScan(pose(), Span<Point2>(s_.hits.data(), projected.hits),
                                                 Span<Point2>(s_.free_ends.data(), projected.free_ends),
-                                                scan_marker_.current());
+                                                scan_marker_.current(), index);
   counters_.updates_out_of_box += static_cast<std::uint32_t>(st.out_of_box);
   counters_.updates_dropped_pool_full += static_cast<std::uint32_t>(st.dropped_pool_full);
 }
@@ -376,12 +384,15 @@ void FrontEnd::InsertIntoRegion(const ProjectedScan& projected) {
 void FrontEnd::EnterKnownRegion() {
   const int region = regions_.current();
   const float absence = path_m_ - regions_[region].path_at_last_scan_m;
-  // Align the submap to the map at once (paper: on region entry).
+  const bool loop = absence >= config_.back_end.loop_min_path_m && anchor_region_ >= 0 && config_.back_end.enable;
+  // Align the submap to the map at once (paper: on region entry); after a loop to that map alone:
+  // the map the robot drifted in holds the walls near the border too, and with it in the
+  // reference the registration confirms the drift instead of measuring it.
   const Pose2 submap_before = submap_pose_;
   RegistrationResult result;
   int frame = -1;
-  const bool aligned = SecondRegistration(&result, &frame);
-  if (absence < config_.back_end.loop_min_path_m || anchor_region_ < 0 || !config_.back_end.enable) {
+  const bool aligned = SecondRegistration(&result, &frame, loop);
+  if (!loop) {
     anchor_region_ = region;  // back after a short detour
     lost_in_region_ = false;
     return;
@@ -399,8 +410,9 @@ void FrontEnd::EnterKnownRegion() {
     lost_in_region_ = false;
     return;
   }
-  lost_in_region_ = !TryLoopClosure(anchor_region_);
-  if (!lost_in_region_) anchor_region_ = region;
+  // Until the search (in slices, StepBackEnd) places the robot in this map, it is not placed.
+  lost_in_region_ = true;
+  BeginLoopClosure(anchor_region_);
   scans_since_closure_try_ = 0;
 }
 
@@ -421,20 +433,29 @@ std::size_t FrontEnd::SubmapTarget() {
   return count;
 }
 
-bool FrontEnd::TryLoopClosure(int from) {
+void FrontEnd::BeginLoopClosure(int from) {
   const int region = regions_.current();
-  if (region < 0) return false;
+  if (region < 0) return;
   path_at_closure_try_ = path_m_;
   const std::size_t n = SubmapTarget();
   const float path = path_m_ - regions_[region].path_at_last_scan_m;
+  if (back_end_.BeginLoopClosure(regions_.maps(), region, from, Span<const Point2>(s_.target.data(), n), submap_pose_,
+                                 path)) {
+    InvalidateRegionReference();  // its table holds the search grid now
+  }
+}
+
+void FrontEnd::FinishLoopClosure() {
+  const int region = back_end_.search_region();
+  const std::size_t n = SubmapTarget();
   const LoopClosureResult r =
-      back_end_.TryLoopClosure(regions_.maps(), region, from, Span<const Point2>(s_.target.data(), n), submap_pose_, path);
-  if (r.used_reference) InvalidateRegionReference();
-  if (r.verdict != Status::kOk) return false;
+      back_end_.FinishLoopClosure(regions_.maps(), Span<const Point2>(s_.target.data(), n), submap_pose_);
+  InvalidateRegionReference();
+  if (r.verdict != Status::kOk) return;
   // The anchors have moved (the graph took the closure); the submap belongs where it was found.
   submap_pose_ = regions_[region].anchor * r.submap_in_region;
-  InvalidateRegionReference();
-  return true;
+  anchor_region_ = region;
+  lost_in_region_ = false;
 }
 
 void FrontEnd::StepBackEnd() {
@@ -445,6 +466,7 @@ void FrontEnd::StepBackEnd() {
   const BackEnd::StepResult r = back_end_.Step(regions_.maps());
   if (r.used_reference || r.anchors_moved) InvalidateRegionReference();
   if (r.anchors_moved && followed >= 0) submap_pose_ = regions_[followed].anchor * before.Inverse() * submap_pose_;
+  if (r.loop_search_done) FinishLoopClosure();
 }
 
 void FrontEnd::UpdateStatus() {

@@ -101,7 +101,9 @@ class FrontEnd {
   DPCR_STAGE void RegisterScan(std::size_t hits, const Pose2& predicted);
   DPCR_STAGE void BuildRegionReference(const int (&maps)[2], int n);
   DPCR_STAGE RegistrationResult RegisterSubmap(RegionalMap& r);
-  void InsertIntoRegion(const ProjectedScan& projected);
+  // Into map `index`: the current one, or the anchor map while the robot cannot place itself in
+  // the current one (its pose is known in the anchor's frame, so that map takes the scan unsmeared).
+  void InsertIntoRegion(const ProjectedScan& projected, int index);
   // Never smear (FrontEndConfig::uncertain_turn_rad): whether a rejection now would leave the
   // scan placed by an uncertain prediction; after RegisterScan, the streak counters, and true when
   // the scan stays out of the maps (restarting the submap from it after a long streak).
@@ -111,11 +113,13 @@ class FrontEnd {
   DPCR_STAGE void RefitSubmapLines();
   void EnterRegion(bool first);
   // The second registration; `result` (optional) gets the registration's answer when one ran,
-  // and `region` the map whose frame it is in. True when accepted.
-  bool SecondRegistration(RegistrationResult* result = nullptr, int* region = nullptr);
+  // and `region` the map whose frame it is in. True when accepted. `loop_entry`: against the
+  // current map alone (a loop closure must not be pulled by the map the robot drifted in).
+  bool SecondRegistration(RegistrationResult* result = nullptr, int* region = nullptr, bool loop_entry = false);
   // The regional maps the second registration aligns to (1 or 2; 0: none yet); the first one's
-  // frame is the registration's frame.
-  int ReferenceMaps(int (&maps)[2]) const;
+  // frame is the registration's frame. While the robot cannot place itself in the current map,
+  // the anchor map alone.
+  int ReferenceMaps(int (&maps)[2], bool loop_entry) const;
   bool WellInside(const RegionalMap& r) const;
   void UpdateStatus();
   // Back end: the region just left, a loop closure on re-entry, one queued job per scan.
@@ -124,7 +128,11 @@ class FrontEnd {
   // storage or moved anchors): the next second registration rebuilds it.
   void InvalidateRegionReference();
   void EnterKnownRegion();
-  bool TryLoopClosure(int from);
+  // A loop-closure search for the current map (the robot's pose known in map `from`), run by
+  // the back end in slices; its end refines and offers the closure, and on success places the
+  // robot in the map.
+  void BeginLoopClosure(int from);
+  void FinishLoopClosure();
   void StepBackEnd();
   // The submap's obstacle cells (from its reference), thinned to the target capacity.
   std::size_t SubmapTarget();

@@ -80,9 +80,10 @@ int RegionSet::SeedFromSubmap(const Submap& submap, const Pose2& submap_pose, Sp
 }
 
 InsertionStats RegionSet::InsertScan(const Pose2& robot, Span<Point2> hits, Span<Point2> free_ends,
-                                     std::uint32_t marker) {
-  if (current_ < 0) return InsertionStats{};
-  RegionalMap& r = (*this)[current_];
+                                     std::uint32_t marker, int index) {
+  if (index < 0) index = current_;
+  if (index < 0 || index >= size_) return InsertionStats{};
+  RegionalMap& r = (*this)[index];
   const Pose2 to_region = r.anchor.Inverse() * robot;
   const PointTransform into_region(to_region);
   for (Point2& p : hits) p = into_region(p);

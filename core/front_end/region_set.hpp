@@ -45,10 +45,10 @@ class RegionSet {
   // Returns the updates dropped for want of tiles.
   DPCR_STAGE int SeedFromSubmap(const Submap& submap, const Pose2& submap_pose, Span<Point2> points,
                                 ScanMarker& marker);
-  // Inserts a scan into the current map, if any: `hits` and `free_ends` are robot-frame (the
-  // robot at `robot` in the world) and are moved into the map's frame in place.
+  // Inserts a scan into map `index` (the current one: -1), if any: `hits` and `free_ends` are
+  // robot-frame (the robot at `robot` in the world) and are moved into the map's frame in place.
   DPCR_STAGE InsertionStats InsertScan(const Pose2& robot, Span<Point2> hits, Span<Point2> free_ends,
-                                       std::uint32_t marker);
+                                       std::uint32_t marker, int index = -1);
 
   // Loading a saved map (core/persistence), after Reset: appends a map in creation order, empty,
   // with its key, anchor and scan count (none current); nullptr when the pool is full.

@@ -44,7 +44,7 @@ std::uint64_t BackEndWork(const MapperType& mapper) {
 template <class MapperType>
 void AddTimedScan(MapperType& mapper, const typename MapperType::ScanType& scan, RunRecord* run) {
   const std::uint64_t work = BackEndWork(mapper);
-  const std::uint32_t searches = mapper.back_end().counters().loop_searches;
+  const bool searching = mapper.back_end().searching();
   const auto t0 = std::chrono::steady_clock::now();
   (void)mapper.AddScan(scan);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -52,7 +52,7 @@ void AddTimedScan(MapperType& mapper, const typename MapperType::ScanType& scan,
   run->estimate.push_back({scan.stamp_us, mapper.pose()});
   run->scan_region.push_back(mapper.last_scan_region());
   run->scan_in_region.push_back(mapper.last_scan_in_region());
-  if (std::getenv("DPCR_TRACE_CLOSURES") != nullptr && mapper.back_end().counters().loop_searches != searches) {
+  if (std::getenv("DPCR_TRACE_CLOSURES") != nullptr && searching && !mapper.back_end().searching()) {
     const auto& t = mapper.back_end().last_closure();
     std::fprintf(stderr, "closure t=%.1f r%d<-r%d path %.1f win %.2f score %.2f/%.2f d(%.2f %.2f %.3f) plicp %s inl %.2f res %.3f graph %s\n",
                  static_cast<double>(scan.stamp_us) * 1e-6, t.region, t.from, static_cast<double>(t.path_m),
@@ -131,6 +131,7 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                    {"updates_out_of_box", c.updates_out_of_box},
                    {"updates_dropped_pool_full", c.updates_dropped_pool_full},
                    {"scans_not_inserted", c.scans_not_inserted},
+                   {"scans_into_anchor_map", c.scans_into_anchor_map},
                    {"scans_empty", c.scans_empty},
                    {"scans_fused_at_prediction", c.scans_fused_at_prediction},
                    {"scans_kept_out_rejected", c.scans_kept_out_rejected},

@@ -29,14 +29,14 @@ std::vector<Point2> Cloud(const std::vector<Segment>& walls, Pose2 at) {
 struct Setup {
   dpcr_test::GridFixture fixture;
   std::unique_ptr<Grid> grid = std::make_unique<Grid>();
-  std::vector<Point2> scratch = std::vector<Point2>(512);
+  std::vector<dpcr::MatchCell> scratch = std::vector<dpcr::MatchCell>(512);
   explicit Setup(const std::vector<Segment>& walls) {
     for (const Segment& s : walls) fixture.Draw(s);
     grid->Build(*fixture.grid, fixture.grid->box(), 2, 0);
   }
   dpcr::CorrelativeSearchResult Search(const std::vector<Point2>& cloud, Pose2 initial, float window_m, float window_rad) {
     return dpcr::CorrelativeSearch(*grid, dpcr::Span<const Point2>(cloud.data(), cloud.size()), initial, window_m, window_rad,
-                                   dpcr::CorrelativeSearchConfig{}, dpcr::Span<Point2>(scratch.data(), scratch.size()));
+                                   dpcr::CorrelativeSearchConfig{}, dpcr::Span<dpcr::MatchCell>(scratch.data(), scratch.size()));
   }
 };
 
