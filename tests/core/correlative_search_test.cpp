@@ -62,6 +62,41 @@ TEST_CASE("The correlative search finds a cloud 1 m and 12 degrees from its gues
   }
 }
 
+TEST_CASE("A correlative search run in slices gives the one-shot answer, each slice bounded") {
+  Setup s(Room());
+  const Pose2 truth{3.2f, 6.1f, 0.4f};
+  const auto cloud = Cloud(Room(), truth);
+  const dpcr::Span<const Point2> points(cloud.data(), cloud.size());
+  const dpcr::Span<dpcr::MatchCell> scratch(s.scratch.data(), s.scratch.size());
+  for (const Pose2 guess : {Pose2{truth.x + 0.8f, truth.y - 0.6f, truth.theta - 0.21f}, Pose2{2.0f, 4.0f, 1.5f}}) {
+    const dpcr::CorrelativeSearchResult whole = s.Search(cloud, guess, 1.5f, 0.35f);
+    dpcr::CorrelativeSearchRun run;
+    run.Begin(*s.grid, points, guess, 1.5f, 0.35f, dpcr::CorrelativeSearchConfig{});
+    constexpr std::uint32_t kSlice = 500;
+    // One coarse block of 16 x 16 offsets is the most a slice can overrun by.
+    constexpr std::uint32_t kWorstBlock = 16 * 16 + 4 * 4 + 1;
+    int slices = 0;
+    std::uint32_t before = 0;
+    bool done = false;
+    while (!done) {
+      done = run.Continue(*s.grid, points, dpcr::CorrelativeSearchConfig{}, scratch, kSlice);
+      ++slices;
+      const std::uint32_t evaluated = run.result().poses_evaluated - before;
+      before = run.result().poses_evaluated;
+      REQUIRE(evaluated <= kSlice + kWorstBlock + 1);
+    }
+    REQUIRE(slices > 3);
+    const dpcr::CorrelativeSearchResult& sliced = run.result();
+    REQUIRE(sliced.verdict == whole.verdict);
+    REQUIRE(sliced.pose.x == whole.pose.x);
+    REQUIRE(sliced.pose.y == whole.pose.y);
+    REQUIRE(sliced.pose.theta == whole.pose.theta);
+    REQUIRE(sliced.score == whole.score);
+    REQUIRE(sliced.second_score == whole.second_score);
+    REQUIRE(sliced.poses_evaluated == whole.poses_evaluated);
+  }
+}
+
 TEST_CASE("The correlative search refuses twin rooms and corridors") {
   SECTION("two identical rooms side by side, both inside the window") {
     std::vector<Segment> twins;
