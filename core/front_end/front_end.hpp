@@ -121,8 +121,9 @@ class FrontEnd {
   // Without wheels, a scan whose velocity changed much since the last one (a turn starting or
   // stopping: twice FrontEndConfig::redeskew_min_*) is registered but kept out of the maps, which so
   // keep only well de-skewed scans; registration against them is absolute, so the bent scan's
-  // error does not stay. At most kMaxBentKeptOut in a row. True when kept out (counted).
-  bool KeepOutBent();
+  // error does not stay. At most kMaxBentKeptOut in a row; a submap of one scan takes the bent
+  // scan in its place. True when kept out (counted).
+  bool KeepOutBent(std::size_t hits);
   // Never smear (FrontEndConfig::uncertain_turn_rad): whether a rejection now would leave the
   // scan placed by an uncertain prediction; after RegisterScan, the streak counters, and true when
   // the scan stays out of the maps (restarting the submap from it after a long streak).
