@@ -329,10 +329,25 @@ RegistrationResult FrontEnd::RegisterRedeskewed(Span<const Beam> beams, const Sc
   const RegistrationResult second =
       RegisterFirst(*s_.submap_reference, nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
                     Span<const Point2>(s_.hits.data(), projected->hits), pose_, first.pose, f, s_.correspondences, &fe_counters_.search);
-  if (second.verdict == Status::kOk || first.verdict != Status::kOk) return second;
+  if (second.verdict == Status::kOk) return second;
+  if (first.verdict != Status::kOk) return bent_ ? TrackBent(second, first.pose) : second;
   // Only the first one was accepted: its points back.
   *projected = ProjectScan(beams, config_.lidar, motion, s_.hits, s_.free_ends);
   return first;
+}
+
+RegistrationResult FrontEnd::TrackBent(RegistrationResult r, const Pose2& from) {
+  // A bent scan cannot fit straight walls as closely as the residual bound asks; its pose still
+  // tracks the turn when everything else holds. The scan itself stays out of the maps (KeepOutBent).
+  const PlicpConfig& c = config_.front_end.first_registration;
+  const Pose2 moved = Between(from, r.pose);
+  if (r.inliers >= c.min_correspondences && r.inlier_ratio >= c.min_inlier_ratio && !r.degenerate &&
+      r.mean_residual_m <= 2.0f * c.max_mean_residual_m && std::hypot(moved.x, moved.y) <= c.max_correction_m &&
+      std::fabs(moved.theta) <= c.max_correction_rad) {
+    r.verdict = Status::kOk;
+    ++fe_counters_.bent_tracked;
+  }
+  return r;
 }
 
 void FrontEnd::EnterRegion(bool first) {

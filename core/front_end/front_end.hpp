@@ -41,7 +41,8 @@ struct FrontEndCounters {
   std::uint32_t region_line_builds = 0;
   std::uint32_t reference_cells_dropped = 0;  // obstacle cells past a reference's capacity
   std::uint32_t submap_early_builds = 0;      // submap references rebuilt after a weak match
-  std::uint32_t redeskews = 0;  // scans projected and registered again with the motion found (no wheels)
+  std::uint32_t redeskews = 0;
+  std::uint32_t bent_tracked = 0;  // bent scans tracked past the residual bound (FrontEnd::TrackBent)  // scans projected and registered again with the motion found (no wheels)
   FirstRegistrationStats search;               // the coarse pose search of the first registration
 };
 
@@ -110,6 +111,9 @@ class FrontEnd {
   // or stopped since leaves the scan bent (a spin-up to 120°/s bends a 5 Hz revolution by ~7°).
   // When the registration's motion differs enough (FrontEndConfig::redeskew_min_*), the beams are
   // projected again with it and registered once more from the first answer.
+  // A rejected registration of a bent scan accepted for its pose when only the residual bound
+  // failed, up to twice it (counted bent_tracked); `from`: where the registration started.
+  RegistrationResult TrackBent(RegistrationResult r, const Pose2& from);
   RegistrationResult RegisterRedeskewed(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us,
                                         ProjectedScan* projected, const RegistrationResult& first);
   DPCR_STAGE void BuildRegionReference(const int (&maps)[2], int n);
