@@ -39,6 +39,12 @@ struct LidarConfig {
   // Beams with no return clear free space up to this distance (0 = they clear nothing).
   float no_return_free_m = 0.0f;
   Pose2 mount;  // the lidar's pose in the robot frame
+  // Junk filter (a low-cost lidar's stray readings, e.g. an XV-11's): a return that no valid
+  // return within two beams on either side confirms (|range difference| <= k beams x (5 cm + 5 %
+  // of its range)) is dropped and counted (MapperCounters::beams_isolated). A junk range reaches
+  // through walls, up to 6 m: each would put an obstacle, and a tile, outside the home. Off by
+  // default: a clean lidar's single-beam returns (a chair leg) are real.
+  bool drop_isolated_returns = false;
 };
 
 constexpr ReferenceConfig ReferenceWithThreshold(std::int16_t obstacle_threshold) {
@@ -91,6 +97,10 @@ struct FrontEndConfig {
   // rejections it restarts from the current scan at the predicted pose (the regional maps are
   // untouched; the second registration then pulls the fresh submap onto them).
   int submap_restart_after_rejections = 10;
+  // A scan with fewer returns than this neither starts the submap (the first scan, a restart) nor
+  // joins it while the submap is empty: a lidar's spin-up revolution (an XV-11: 7-17 returns of
+  // 360) would otherwise be the only thing the next scans can be registered against.
+  int min_start_hits = 40;
   // Heading increment of the prediction: false = the wheels'; true = the integrated gyro yaw when
   // the odometry samples carry a rate (OdometrySample::has_gyro), the wheels keeping the
   // translation (and the de-skew within a revolution). Samples without wheels (has_wheels false)
@@ -105,6 +115,12 @@ struct FrontEndConfig {
   // A rejected first registration is tried again from the best pose of a coarse search
   // (PoseSearchConfig: ±20°, ±0.3 m) on the submap reference; and when the predicted turn since the
   // last scan exceeds search_turn_rad (0 = never), the search runs first.
+  // Without wheels: a scan is de-skewed again with the motion its registration found, and
+  // registered once more, when that motion moves the revolution's last beam by more than these
+  // against the velocity the de-skew assumed (FrontEnd::RegisterRedeskewed).
+  float redeskew_min_m = 0.01f;
+  float redeskew_min_rad = 0.01f;
+  // At twice these, the scan is registered but kept out of the maps (FrontEnd::KeepOutBent).
   bool search_on_rejection = true;
   float search_turn_rad = 0.0f;
   PoseSearchConfig search;

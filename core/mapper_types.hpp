@@ -21,12 +21,17 @@ struct MapperCounters {
   // predicted pose (scans_fused_at_prediction) or kept out (scans_kept_out_rejected).
   std::uint32_t scans_rejected = 0;
   std::uint32_t scans_empty = 0;             // no usable beam: the pose is the prediction
+  // Fewer returns than FrontEndConfig::min_start_hits while the submap was empty (a lidar's
+  // spin-up): no submap starts from them; the pose is the prediction.
+  std::uint32_t scans_too_sparse = 0;
   std::uint32_t scans_fused_at_prediction = 0;  // rejected, prediction certain: inserted there
   std::uint32_t scans_kept_out_rejected = 0;  // rejected, prediction uncertain: inserted nowhere
+  std::uint32_t scans_kept_out_bent = 0;      // registered, de-skew doubtful: inserted nowhere (FrontEnd::KeepOutBent)
   std::uint32_t scans_without_odometry = 0;  // no odometry sample yet: constant-velocity prediction
   std::uint32_t odometry_samples = 0;
   std::uint32_t odometry_steps_back = 0;     // samples stamped earlier than their predecessor
   std::uint32_t beams_invalid = 0;           // no return, or outside [min, max] range
+  std::uint32_t beams_isolated = 0;          // returns dropped as junk (LidarConfig::drop_isolated_returns)
   std::uint32_t regions_created = 0;
   std::uint32_t region_pool_full = 0;        // scans that wanted a new region and got none
   std::uint32_t updates_out_of_box = 0;      // cell updates past a regional map's box

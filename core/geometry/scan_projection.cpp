@@ -5,24 +5,43 @@
 #include "core/base/assert.hpp"
 
 namespace dpcr {
+namespace {
 
-ProjectedScan ProjectScan(Span<const Beam> beams, std::int64_t stamp_us, const LidarConfig& lidar,
-                          const OdometryBuffer& odometry, Span<Point2> hits_out, Span<Point2> free_ends_out) {
+bool Valid(const Beam& b, const LidarConfig& lidar) {
+  return std::isfinite(b.range_m) && b.range_m >= lidar.min_range_m && b.range_m <= lidar.max_range_m;
+}
+
+// Whether a valid return within two beams of beam i agrees with its range (LidarConfig::drop_isolated_returns).
+bool Confirmed(Span<const Beam> beams, std::size_t i, const LidarConfig& lidar) {
+  const float r = beams[i].range_m, step = 0.05f + 0.05f * r;
+  for (std::size_t k = 1; k <= 2; ++k) {
+    const float tolerance = static_cast<float>(k) * step;
+    if (i >= k && Valid(beams[i - k], lidar) && std::fabs(beams[i - k].range_m - r) <= tolerance) return true;
+    if (i + k < beams.size() && Valid(beams[i + k], lidar) && std::fabs(beams[i + k].range_m - r) <= tolerance) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+ProjectedScan ProjectScan(Span<const Beam> beams, const LidarConfig& lidar, const ScanMotion& motion,
+                          Span<Point2> hits_out, Span<Point2> free_ends_out) {
   DPCR_ASSERT(hits_out.size() >= beams.size() && free_ends_out.size() >= beams.size());
   ProjectedScan out;
-  const bool deskew = !odometry.empty();
-  const Pose2 odom_at_stamp = deskew ? odometry.PoseAt(stamp_us) : Pose2::Identity();
-  const Pose2 odom_at_stamp_inv = odom_at_stamp.Inverse();
+  const bool deskew = motion.moves();
   // Beams of one packet share a motion estimate closely; cache the last offset's correction.
   std::int32_t cached_offset = 0;
   Pose2 sensor = lidar.mount;
-  for (const Beam& b : beams) {
+  for (std::size_t i = 0; i < beams.size(); ++i) {
+    const Beam& b = beams[i];
     if (deskew && b.offset_us != cached_offset) {
       cached_offset = b.offset_us;
-      sensor = odom_at_stamp_inv * odometry.PoseAt(stamp_us + b.offset_us) * lidar.mount;
+      sensor = motion.At(b.offset_us) * lidar.mount;
     }
-    const bool finite = std::isfinite(b.range_m);
-    if (finite && b.range_m >= lidar.min_range_m && b.range_m <= lidar.max_range_m) {
+    const bool finite = std::isfinite(b.range_m), valid = Valid(b, lidar);
+    if (valid && lidar.drop_isolated_returns && !Confirmed(beams, i, lidar)) {
+      ++out.isolated;
+    } else if (valid) {
       hits_out[out.hits++] = sensor.Apply(Point2{b.range_m * std::cos(b.angle_rad), b.range_m * std::sin(b.angle_rad)});
     } else if (lidar.no_return_free_m > 0.0f && (!finite || b.range_m <= 0.0f || b.range_m > lidar.max_range_m)) {
       const float r = lidar.no_return_free_m;

@@ -1,11 +1,11 @@
 // Turns a scan's beams into points: robot-frame at the scan stamp, with each beam moved by the
-// robot motion between the scan stamp and the beam's own time (de-skew from odometry).
+// robot motion between the scan stamp and the beam's own time (de-skew: core/front_end/scan_motion.hpp).
 #pragma once
 
 #include <cstdint>
 
 #include "core/config.hpp"
-#include "core/front_end/odometry_buffer.hpp"
+#include "core/front_end/scan_motion.hpp"
 #include "core/geometry/pose2.hpp"
 #include "core/geometry/scan.hpp"
 #include "core/base/span.hpp"
@@ -16,10 +16,11 @@ struct ProjectedScan {
   std::size_t hits = 0;       // points with a return, written to hits_out
   std::size_t free_ends = 0;  // no-return beams cleared up to no_return_free_m
   std::size_t invalid = 0;    // beams with neither
+  std::size_t isolated = 0;   // returns dropped as junk (LidarConfig::drop_isolated_returns)
 };
 
-// Points are expressed in the robot frame at `stamp_us`. `odometry` may be empty (no de-skew).
-ProjectedScan ProjectScan(Span<const Beam> beams, std::int64_t stamp_us, const LidarConfig& lidar,
-                          const OdometryBuffer& odometry, Span<Point2> hits_out, Span<Point2> free_ends_out);
+// Points are expressed in the robot frame at the scan stamp (the one `motion` was made for).
+ProjectedScan ProjectScan(Span<const Beam> beams, const LidarConfig& lidar, const ScanMotion& motion,
+                          Span<Point2> hits_out, Span<Point2> free_ends_out);
 
 }  // namespace dpcr

@@ -38,6 +38,14 @@ struct Options {
   std::string heading = "wheels";  // the prediction's heading: wheels, or gyro (FrontEndConfig::gyro_heading)
   std::string lidar = "ld06";      // ld06, or xv11 (sim::Xv11LidarConfig)
   std::string odometry = "wheels";  // wheels (+ gyro), gyro (no wheel encoders), none
+  int spins = 0;                    // an in-place spin every this many waypoints (0: none)
+  double lidar_min_hz = -1.0;       // the lowest revolution rate (-1: the lidar model's)
+};
+
+// First registrations during the robot's in-place spins (metrics.json "spins").
+struct SpinTally {
+  std::uint32_t scans = 0;
+  std::uint32_t rejected = 0;
 };
 
 // The odometry the robot has (--odometry): false when it has none; gyro: the rate alone.
@@ -86,9 +94,20 @@ void PrintSummary(const Options& opt, const MapperType& mapper, const dpcr::outp
 // What was simulated: metrics.json "input".
 nlohmann::json InputMetrics(const Options& opt, const dpcr::sim::Simulation& sim) {
   const dpcr::sim::Pose2d& start = sim.start_pose();
-  return {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed}, {"heading", opt.heading}, {"lidar", opt.lidar}, {"odometry", opt.odometry},
+  return {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed}, {"heading", opt.heading}, {"lidar", opt.lidar}, {"odometry", opt.odometry}, {"spins", opt.spins},
           {"plan", opt.fixed_plan ? "fixed" : "varied by the seed"}, {"start_pose_in_world", {start.x, start.y, start.theta}},
           {"slip_events", sim.slip_events()}, {"coverage_tours", sim.tours_completed()}};
+}
+
+dpcr::sim::SimConfig SimConfigFor(const Options& opt) {
+  dpcr::sim::SimConfig sim_config;
+  sim_config.seed = opt.seed;
+  sim_config.duration_min = opt.minutes;
+  sim_config.vary_plan = !opt.fixed_plan;
+  if (opt.lidar == "xv11") sim_config.lidar = dpcr::sim::Xv11LidarConfig();
+  if (opt.lidar_min_hz >= 0.0) sim_config.lidar.rate_min_hz = opt.lidar_min_hz;
+  sim_config.motion.spin_every_waypoints = opt.spins;
+  return sim_config;
 }
 
 int Run(const Options& opt) {
@@ -96,15 +115,12 @@ int Run(const Options& opt) {
   static MapperType mapper;  // ~2 MiB: static storage, as on the robot
 
   const dpcr::sim::World world = dpcr::sim::LoadWorld(opt.world);
-  dpcr::sim::SimConfig sim_config;
-  sim_config.seed = opt.seed;
-  sim_config.duration_min = opt.minutes;
-  sim_config.vary_plan = !opt.fixed_plan;
-  if (opt.lidar == "xv11") sim_config.lidar = dpcr::sim::Xv11LidarConfig();
+  const dpcr::sim::SimConfig sim_config = SimConfigFor(opt);
   dpcr::sim::Simulation sim(world, sim_config);
 
   dpcr::MapperConfig config;
   config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
+  config.lidar.drop_isolated_returns = opt.lidar == "xv11";  // its junk readings
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
   config.front_end.gyro_heading = opt.heading == "gyro";
@@ -122,6 +138,7 @@ int Run(const Options& opt) {
   dpcr::output::RunRecord run;
   dpcr::apps::Progress progress("sim " + opt.world);
   dpcr::sim::SimEvent event;
+  SpinTally spins;
   const double total_us = opt.minutes * 60e6;
   while (sim.Step(&event)) {
     if (event.type == dpcr::sim::SimEventType::kOdometry) {
@@ -131,7 +148,12 @@ int Run(const Options& opt) {
       continue;
     }
     if (emitter && !emitter->AddScan(event.scan)) throw std::runtime_error("device emitter rejected a scan");
+    const std::uint32_t rejected_before = mapper.front_end_counters().first_rejected;
     dpcr::output::AddTimedScan(mapper, event.scan, &run);  // a SimScan is the vacuum mapper's scan type
+    if (event.spinning) {
+      ++spins.scans;
+      spins.rejected += mapper.front_end_counters().first_rejected - rejected_before;
+    }
     run.ground_truth.push_back({event.scan.stamp_us, event.truth.ToPose2()});
     if ((run.estimate.size() & 63) == 0) progress.Update(static_cast<double>(event.time_us) / total_us);
   }
@@ -153,6 +175,10 @@ int Run(const Options& opt) {
   dpcr::output::FinalizeTrajectory(mapper, &run);
   nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
   metrics["input"] = InputMetrics(opt, sim);
+  if (opt.spins > 0) {
+    metrics["spins"] = {{"scans", spins.scans}, {"first_rejected", spins.rejected},
+                        {"rejected_fraction", spins.scans > 0 ? static_cast<double>(spins.rejected) / spins.scans : 0.0}};
+  }
   metrics = dpcr::output::WriteRunOutputs(opt.out, dpcr::output::RenderFused(mapper), run, metrics);
   if (!opt.save_map.empty()) dpcr::output::SaveMapFile(mapper, opt.save_map);
   dpcr::apps::WriteScanTimes(opt.scan_times, run);
@@ -191,6 +217,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"ld06", "xv11"}))->capture_default_str();
   app.add_option("--odometry", opt.odometry, "what the robot has: wheels (+ gyro), gyro (no wheel encoders), none")
       ->check(CLI::IsMember({"wheels", "gyro", "none"}))->capture_default_str();
+  app.add_option("--spins", opt.spins, "an in-place spin (360 deg at 120 deg/s) after every N waypoints reached (0: none); "
+                 "metrics.json \"spins\" counts the first registrations rejected during them")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  app.add_option("--lidar-min-hz", opt.lidar_min_hz, "the lowest revolution rate of a wandering lidar motor (default: the model's; "
+                 "xv11 4.5 Hz, ld06 none)")->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
   if (opt.out.empty()) opt.out = "out/" + std::filesystem::path(opt.world).stem().string();
   try {

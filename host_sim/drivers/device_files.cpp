@@ -26,7 +26,13 @@ bool DeviceEmitter::AddScan(const DeviceScan& scan) {
   bool ok = true;
   if (config_.lidar == LidarKind::kXv11) {
     Xv11EmittedPacket packets[kXv11PacketsPerRevolution];
-    EncodeXv11Revolution(scan.beams.data(), scan.beams.size(), scan.stamp_us, config_.angle_map, config_.xv11_rate_hz, packets);
+    // The revolution's own rate when its beams tell it (a wandering motor: dpcr-sim's XV-11).
+    float rate_hz = config_.xv11_rate_hz;
+    const std::size_t n = scan.beams.size();
+    if (n > 1 && scan.beams[n - 1].offset_us > 0) {
+      rate_hz = static_cast<float>(1e6 * static_cast<double>(n - 1) / (static_cast<double>(n) * scan.beams[n - 1].offset_us));
+    }
+    EncodeXv11Revolution(scan.beams.data(), scan.beams.size(), scan.stamp_us, config_.angle_map, rate_hz, packets);
     for (const Xv11EmittedPacket& p : packets) ok = ok && uart_.Write(p.arrival_us, p.bytes, sizeof(p.bytes));
     return ok;
   }

@@ -27,7 +27,8 @@ struct DeviceFilesConfig {
   // Written into DIR/device.json with the above (the lidar's range limit and mount).
   float max_range_m = LidarConfig{}.max_range_m;
   float laser_offset_m = 0.0f;
-  // The lidar's packets: LD06, or XV-11 (hal/xv11_emitter.hpp) turning at xv11_rate_hz.
+  // The lidar's packets: LD06, or XV-11 (hal/xv11_emitter.hpp) turning at xv11_rate_hz (or at
+  // the rate a revolution's beam times give, when it has more than one beam).
   LidarKind lidar = LidarKind::kLd06;
   float xv11_rate_hz = 5.0f;
 };

@@ -33,7 +33,7 @@ nlohmann::json RelationsJson(const dpcr::eval::RelationsResult& r) {
 
 nlohmann::json TrackingMetrics(const dpcr::MapperCounters& c, std::uint32_t first_registrations) {
   const double scans = c.scans > 0 ? static_cast<double>(c.scans) : 1.0;
-  const double rejected = static_cast<double>(c.scans_rejected - c.scans_empty);
+  const double rejected = static_cast<double>(c.scans_rejected - c.scans_empty - c.scans_too_sparse);
   return {{"tracking_fraction", 1.0 - static_cast<double>(c.lost_scans) / scans},
           {"lost_scans", c.lost_scans},
           {"lost_seconds", static_cast<double>(c.lost_us) * 1e-6},

@@ -133,8 +133,11 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                    {"scans_not_inserted", c.scans_not_inserted},
                    {"scans_into_anchor_map", c.scans_into_anchor_map},
                    {"scans_empty", c.scans_empty},
+                   {"scans_too_sparse", c.scans_too_sparse},
+                   {"beams_isolated", c.beams_isolated},
                    {"scans_fused_at_prediction", c.scans_fused_at_prediction},
                    {"scans_kept_out_rejected", c.scans_kept_out_rejected},
+                   {"scans_kept_out_bent", c.scans_kept_out_bent},
                    {"submap_restarts", c.submap_restarts}};
   j["tracking"] = TrackingMetrics(c, mapper.front_end_counters().first_registrations);
   j["tracking_fraction"] = j["tracking"]["tracking_fraction"];
@@ -142,7 +145,9 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
   j["front_end"] = {{"first_registrations", f.first_registrations}, {"first_rejected", f.first_rejected},
                     {"second_registrations", f.second_registrations}, {"second_rejected", f.second_rejected},
                     {"submap_line_builds", f.submap_line_builds}, {"region_line_builds", f.region_line_builds},
-                    {"reference_cells_dropped", f.reference_cells_dropped}};
+                    {"reference_cells_dropped", f.reference_cells_dropped}, {"submap_early_builds", f.submap_early_builds},
+                    {"redeskews", f.redeskews}, {"bent_tracked", f.bent_tracked}, {"searches", f.search.searches},
+                    {"search_recoveries", f.search.search_recoveries}, {"search_grid_builds", f.search.search_grid_builds}};
   return j;
 }
 

@@ -19,8 +19,16 @@ void PlanFollower::NextMove() {
   m.start_pose = pose_;
   m.start_distance = distance_;
   m.start_rotation = rotation_;
+  if (spin_due_) {
+    spin_due_ = false;
+    m.rotate = m.spin = true;
+    m.amount = spin_direction_ * 2.0 * kPiD;
+    m.vmax = limits_.spin_yaw_rate_rps;
+    m.accel = limits_.spin_yaw_accel_rps2;
+    spin_direction_ = -spin_direction_;
+  }
   // Find the next waypoint that needs motion; a tour with no motion at all leaves the robot parked.
-  for (std::size_t tries = 0; tries < tour_.size() + 1; ++tries) {
+  for (std::size_t tries = 0; tries < tour_.size() + 1 && !m.spin; ++tries) {
     if (tour_.size() < 2) break;
     const Vec2 target = tour_[next_waypoint_];
     const Vec2 d = target - Vec2{pose_.x, pose_.y};
@@ -95,6 +103,8 @@ void PlanFollower::AdvanceTo(double t_s) {
       pose_.y = tour_[next_waypoint_].y;
       next_waypoint_ = (next_waypoint_ + 1) % tour_.size();
       if (next_waypoint_ == 0) ++tours_;
+      ++arrivals_;
+      if (limits_.spin_every_waypoints > 0 && arrivals_ % limits_.spin_every_waypoints == 0) spin_due_ = true;
     }
     NextMove();
   }

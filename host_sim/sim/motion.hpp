@@ -15,6 +15,12 @@ struct MotionLimits {
   double max_accel_mps2 = 0.50;
   double max_yaw_rate_rps = 1.50;
   double max_yaw_accel_rps2 = 3.00;
+  // In-place spins (a vacuum's spot cleaning, an escape): after every spin_every_waypoints-th
+  // waypoint reached (0 = never), one full turn on the spot at spin_yaw_rate_rps (120°/s),
+  // accelerating at spin_yaw_accel_rps2; the direction alternates.
+  int spin_every_waypoints = 0;
+  double spin_yaw_rate_rps = 2.0943951;
+  double spin_yaw_accel_rps2 = 6.0;
 };
 
 class PlanFollower {
@@ -31,10 +37,13 @@ class PlanFollower {
   double distance_m() const { return distance_; }
   double rotation_rad() const { return rotation_; }
   int tours_completed() const { return tours_; }
+  // True while the robot is in one of the in-place spins (MotionLimits::spin_every_waypoints).
+  bool spinning() const { return move_.spin && t_ >= move_.start_t && t_ < move_.start_t + move_.duration; }
 
  private:
   struct Move {
     bool rotate = false;
+    bool spin = false;  // an in-place spin, not a turn towards a waypoint
     double amount = 0.0;   // signed metres or radians
     double start_t = 0.0;
     double duration = 0.0;
@@ -55,6 +64,9 @@ class PlanFollower {
   double distance_ = 0.0;
   double rotation_ = 0.0;
   int tours_ = 0;
+  int arrivals_ = 0;          // waypoints reached
+  bool spin_due_ = false;     // the next move is a spin
+  double spin_direction_ = 1.0;
 };
 
 }  // namespace dpcr::sim

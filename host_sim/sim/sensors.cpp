@@ -25,6 +25,7 @@ LidarConfig Xv11LidarConfig() {
   LidarConfig c;
   c.beams_per_revolution = 360;
   c.rate_hz = 5.0;
+  c.rate_min_hz = 4.5;
   c.min_range_m = 0.15;
   c.max_range_m = 6.0;
   c.noise_base_m = 0.01;

@@ -14,6 +14,11 @@ namespace dpcr::sim {
 struct LidarConfig {
   int beams_per_revolution = 450;  // LD06 at 10 Hz: 4500 samples/s
   double rate_hz = 10.0;
+  // A motor whose speed wanders (an XV-11's: 3.5-5 Hz): each revolution's rate is the last one's
+  // plus a normal step of rate_step_hz, reflected into [rate_min_hz, rate_hz]; rate_min_hz 0 or
+  // >= rate_hz: every revolution at rate_hz.
+  double rate_min_hz = 0.0;
+  double rate_step_hz = 0.05;
   double min_range_m = 0.02;
   double max_range_m = 12.0;
   double noise_base_m = 0.01;     // range sigma = base + fraction * range
@@ -29,7 +34,7 @@ struct LidarConfig {
   double spin_up_valid_probability = 1.0;
 };
 
-// A Neato XV-11: 5 Hz, 360 readings at 1 degree, 0.15-6 m, 30 % of the returns invalid, 1 % junk,
+// A Neato XV-11: 4.5-5 Hz (rate_min_hz 3.5 for a slower motor), 360 readings at 1 degree, 0.15-6 m, 30 % of the returns invalid, 1 % junk,
 // a spin-up revolution with 10 % of its returns.
 LidarConfig Xv11LidarConfig();
 

@@ -8,6 +8,7 @@ namespace {
 constexpr std::uint64_t kLidarStream = 0x9E3779B97F4A7C15ull;
 constexpr std::uint64_t kOdometryStream = 0xC2B2AE3D27D4EB4Full;
 constexpr std::uint64_t kPlanStream = 0x165667B19E3779F9ull;
+constexpr std::uint64_t kRateStream = 0x27D4EB2F165667C5ull;
 
 // A start pose drawn from the seed: a random waypoint of the canonical plan (so reachable from
 // everywhere the plan goes, never inside a closed cabinet), facing anywhere.
@@ -24,7 +25,8 @@ Simulation::Simulation(const World& world, const SimConfig& config)
       world_(world),
       caster_(world_),
       odometry_(config.odometry, config.seed ^ kOdometryStream),
-      lidar_rng_(config.seed ^ kLidarStream) {
+      lidar_rng_(config.seed ^ kLidarStream),
+      rate_rng_(config.seed ^ kRateStream) {
   if (config.lidar.beams_per_revolution < 1 ||
       config.lidar.beams_per_revolution > static_cast<int>(SimScan{}.beams.capacity())) {
     throw WorldError("lidar beams_per_revolution must be in [1, " + std::to_string(SimScan{}.beams.capacity()) + "]");
@@ -57,22 +59,33 @@ Simulation::Simulation(const World& world, const SimConfig& config)
   follower_ = std::make_unique<PlanFollower>(plan_.waypoints, start.theta, config.motion);
   end_us_ = static_cast<std::int64_t>(std::llround(config.duration_min * 60e6));
   period_us_ = static_cast<std::int64_t>(std::llround(1e6 / config.lidar.rate_hz));
+  rate_hz_ = config.lidar.rate_hz;
   odom_period_us_ = static_cast<std::int64_t>(std::llround(1e6 / config.odometry.rate_hz));
   pending_scan_.type = SimEventType::kScan;
 }
 
 Simulation::~Simulation() = default;
 
-std::int64_t Simulation::BeamTime(std::int64_t k) const {
-  const std::int64_t n = config_.lidar.beams_per_revolution;
-  return (k / n) * period_us_ + (k % n) * period_us_ / n;
+std::int64_t Simulation::BeamTime(std::int64_t i) const {
+  return revolution_us_ + i * period_us_ / config_.lidar.beams_per_revolution;
+}
+
+std::int64_t Simulation::NextPeriodUs() {
+  const LidarConfig& lidar = config_.lidar;
+  if (lidar.rate_min_hz > 0.0 && lidar.rate_min_hz < lidar.rate_hz) {
+    rate_hz_ += std::normal_distribution<double>(0.0, lidar.rate_step_hz)(rate_rng_);
+    if (rate_hz_ > lidar.rate_hz) rate_hz_ = 2.0 * lidar.rate_hz - rate_hz_;
+    if (rate_hz_ < lidar.rate_min_hz) rate_hz_ = 2.0 * lidar.rate_min_hz - rate_hz_;
+    if (rate_hz_ > lidar.rate_hz || rate_hz_ < lidar.rate_min_hz) rate_hz_ = lidar.rate_hz;  // a step past both
+  }
+  return static_cast<std::int64_t>(std::llround(1e6 / rate_hz_));
 }
 
 bool Simulation::Step(SimEvent* out) {
   const LidarConfig& lidar = config_.lidar;
   const std::int64_t n = lidar.beams_per_revolution;
   for (;;) {
-    const std::int64_t beam_us = BeamTime(next_beam_);
+    const std::int64_t beam_us = BeamTime(next_beam_ % n);
     if (next_odom_us_ <= beam_us) {
       if (next_odom_us_ > end_us_) return false;
       const std::int64_t t = next_odom_us_;
@@ -100,7 +113,9 @@ bool Simulation::Step(SimEvent* out) {
       scan.stamp_us = beam_us;
       pending_scan_.truth = follower_->pose();
       pending_scan_.sensor_truth = sensor;
+      pending_scan_.spinning = false;
     }
+    pending_scan_.spinning = pending_scan_.spinning || follower_->spinning();
     const double angle = 2.0 * kPiD * static_cast<double>(i) / static_cast<double>(n);
     Beam beam;
     beam.angle_rad = NormalizeAngle(static_cast<float>(angle));
@@ -111,6 +126,8 @@ bool Simulation::Step(SimEvent* out) {
     beam.offset_us = static_cast<std::int32_t>(beam_us - scan.stamp_us);
     (void)scan.beams.push_back(beam);  // capacity checked in the constructor
     if (i == n - 1) {
+      revolution_us_ += period_us_;
+      period_us_ = NextPeriodUs();
       pending_scan_.time_us = beam_us;
       *out = pending_scan_;
       return true;

@@ -45,6 +45,7 @@ struct SimEvent {
   SimScan scan;
   Pose2d truth;         // robot pose in the world at the odometry stamp / scan stamp
   Pose2d sensor_truth;  // the sensor's pose at the same time (truth * mount)
+  bool spinning = false;  // kScan: the robot was in an in-place spin during the revolution
 };
 
 class Simulation {
@@ -68,7 +69,10 @@ class Simulation {
   const Pose2d& current_pose() const { return follower_->pose(); }
 
  private:
-  std::int64_t BeamTime(std::int64_t k) const;
+  // The time of beam `i` of the current revolution.
+  std::int64_t BeamTime(std::int64_t i) const;
+  // The next revolution's period (LidarConfig::rate_min_hz: a wandering motor speed).
+  std::int64_t NextPeriodUs();
 
   SimConfig config_;
   World world_;  // a copy: the caster points into it, so temporaries are safe to pass
@@ -78,6 +82,9 @@ class Simulation {
   std::unique_ptr<PlanFollower> follower_;
   WheelOdometryModel odometry_;
   std::mt19937_64 lidar_rng_;
+  std::mt19937_64 rate_rng_;
+  double rate_hz_ = 0.0;          // the current revolution's rate
+  std::int64_t revolution_us_ = 0;  // the current revolution's first beam time
   std::int64_t end_us_ = 0;
   std::int64_t period_us_ = 0;
   std::int64_t odom_period_us_ = 0;

@@ -127,3 +127,28 @@ TEST_CASE("With a gyro alone (no wheels) a rejected scan is never fused") {
   REQUIRE(m->counters().scans_fused_at_prediction == 0);
   REQUIRE(Render(*m) == before);
 }
+
+TEST_CASE("A sparse first revolution (a spin-up) does not start the submap; the next full one does") {
+  Runner r;
+  M::ScanType sparse = r.run.scans[0];
+  for (std::size_t b = 0; b < sparse.beams.size(); ++b) {
+    if (b % 45 != 0) sparse.beams[b].range_m = 0.0f;  // 10 returns of 450
+  }
+  r.Odometry(sparse.stamp_us);
+  REQUIRE(r.m->AddScan(sparse) == dpcr::Status::kNotEnoughData);
+  REQUIRE(r.m->counters().scans_too_sparse == 1);
+  REQUIRE(r.m->counters().scans_rejected == 1);
+  REQUIRE(r.m->tiles_used() == 0);  // in no map
+  for (int i = 1; i < 40; ++i) r.Scan(i);
+  CHECK(r.m->counters().scans_too_sparse == 1);
+  CHECK(r.m->front_end_counters().first_rejected == 0);
+  CHECK(r.m->status() == dpcr::MapperStatus::kTracking);
+  // Once the submap holds scans, a sparse one is registered like any other (not skipped).
+  M::ScanType later = r.run.scans[40];
+  for (std::size_t b = 0; b < later.beams.size(); ++b) {
+    if (b % 45 != 0) later.beams[b].range_m = 0.0f;
+  }
+  r.Odometry(later.stamp_us);
+  (void)r.m->AddScan(later);
+  CHECK(r.m->counters().scans_too_sparse == 1);
+}

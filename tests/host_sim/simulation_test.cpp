@@ -314,3 +314,62 @@ TEST_CASE("A PGM floor plan without a start pose can be simulated", "[sim]") {
   CHECK(hi.x - lo.x > 2.0);  // it covers the room, not just sits at the start
   CHECK(hi.y - lo.y > 1.2);
 }
+
+TEST_CASE("In-place spins: full turns on the spot at 120 deg/s, flagged on their scans", "[sim]") {
+  SimConfig config;
+  config.duration_min = 2.0;
+  config.motion.spin_every_waypoints = 2;
+  Simulation sim(LoadBuiltinWorld("apartment"), config);
+  SimEvent ev;
+  Pose2d last;
+  bool have_last = false;
+  int spinning_scans = 0;
+  double fastest = 0.0, spin_travel = 0.0;
+  while (sim.Step(&ev)) {
+    if (ev.type != SimEventType::kScan) continue;
+    if (have_last && ev.spinning) {
+      const double turn = std::fabs(WrapAngle(ev.truth.theta - last.theta));
+      fastest = std::max(fastest, turn / 0.1);
+      // On the spot (a revolution that began as a drive ended decelerated within millimetres).
+      REQUIRE(std::hypot(ev.truth.x - last.x, ev.truth.y - last.y) < 0.01);
+      spin_travel += turn;
+      ++spinning_scans;
+    }
+    last = ev.truth;
+    have_last = true;
+  }
+  CHECK(spinning_scans > 30);
+  CHECK(fastest == Approx(config.motion.spin_yaw_rate_rps).epsilon(0.01));
+  CHECK(spin_travel > 4.0 * dpcr::sim::kPiD);  // at least two full turns
+  // Without spins, no scan says spinning.
+  config.motion.spin_every_waypoints = 0;
+  Simulation plain(LoadBuiltinWorld("apartment"), config);
+  while (plain.Step(&ev)) REQUIRE(!(ev.type == SimEventType::kScan && ev.spinning));
+}
+
+TEST_CASE("A wandering lidar motor: revolution rates vary within their bounds", "[sim]") {
+  SimConfig config;
+  config.duration_min = 1.0;
+  config.lidar = Xv11LidarConfig();
+  config.lidar.rate_min_hz = 3.5;
+  config.lidar.rate_step_hz = 0.2;
+  Simulation sim(LoadBuiltinWorld("hall"), config);
+  SimEvent ev;
+  std::int64_t last_stamp = -1, last_offset = 0, shortest = 1 << 30, longest = 0;
+  while (sim.Step(&ev)) {
+    if (ev.type != SimEventType::kScan) continue;
+    REQUIRE(ev.scan.beams.size() == 360);
+    if (last_stamp >= 0) {
+      const std::int64_t period = ev.scan.stamp_us - last_stamp;
+      shortest = std::min(shortest, period);
+      longest = std::max(longest, period);
+      // The last revolution's beams spanned it: 359 of its 360 steps.
+      REQUIRE(last_offset == period * 359 / 360);
+    }
+    last_stamp = ev.scan.stamp_us;
+    last_offset = ev.scan.beams.back().offset_us;
+  }
+  CHECK(shortest >= 199999);  // 5 Hz at most
+  CHECK(longest <= 285715);   // 3.5 Hz at least
+  CHECK(longest - shortest > 30000);
+}
