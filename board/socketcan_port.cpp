@@ -84,13 +84,22 @@ IoStatus WriteCanFrame(int fd, const CanFrame& frame) {
 }
 
 bool SocketCanPort::Open(const std::string& interface, std::string* error) {
+  interface_ = interface;
   owned_.Reset(OpenSocketCan(interface, error));
   fd_ = owned_.get();
   return fd_ >= 0;
 }
 
+IoStatus SocketCanPort::Reopen() {
+  if (interface_.empty()) return IoStatus::kIoError;  // a borrowed fd cannot be reopened
+  owned_.Reset(OpenSocketCan(interface_, &reopen_error_));
+  fd_ = owned_.get();
+  return fd_ >= 0 ? IoStatus::kOk : IoStatus::kIoError;
+}
+
 void SocketCanPort::Borrow(int fd) {
   owned_.Reset();
+  interface_.clear();
   fd_ = fd;
   ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
 }
@@ -100,6 +109,12 @@ CanRead SocketCanPort::Read() {
   r.status = ReadCanFrame(fd_, &r.frame);
   const int saved = errno;  // kIoError keeps the read's errno
   r.stamp_us = clock_->NowUs();
+  if (r.status == IoStatus::kEndOfStream || r.status == IoStatus::kIoError) {
+    // Failed (the interface went down, bus-off): closed, so that poll() no longer wakes for it;
+    // Reopen() tries again.
+    owned_.Reset();
+    fd_ = -1;
+  }
   errno = saved;
   return r;
 }

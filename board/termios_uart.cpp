@@ -60,6 +60,8 @@ ByteRead TermiosUart::Read(std::uint8_t* buffer, std::size_t capacity) {
   }
   const int saved = errno;  // kIoError keeps the read's errno
   r.stamp_us = clock_->NowUs();
+  // Ended or failed: closed, so that poll() no longer wakes for it.
+  if (r.status == IoStatus::kEndOfStream || r.status == IoStatus::kIoError) fd_.Reset();
   errno = saved;
   return r;
 }

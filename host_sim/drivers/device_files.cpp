@@ -60,23 +60,40 @@ void DeviceEmitter::AddOdometry(const OdometrySample& sample) {
   f.left_ticks = static_cast<std::uint16_t>(std::llround(left_m_ * ticks_per_m) & 0xFFFF);
   f.right_ticks = static_cast<std::uint16_t>(std::llround(right_m_ * ticks_per_m) & 0xFFFF);
   f.sequence = ticks_seq_++;
-  f.time_10us = static_cast<std::uint32_t>((sample.stamp_us / kWheelTimeUnitUs) % kUnitsWrap);
+  f.time_10us = static_cast<std::uint32_t>((DeviceTimeUs(sample.stamp_us) / kWheelTimeUnitUs) % kUnitsWrap);
   // The gyro frame before the ticks frame of the same instant, so the odometry sample carries the rate.
   if (sample.has_gyro) AddGyro(sample);
   CandumpRecord r;
-  r.stamp_us = sample.stamp_us;
+  r.stamp_us = ArrivalUs(sample.stamp_us);
   r.interface = config_.can_interface;
   r.frame = EncodeWheelFrame(f);
   can_.push_back(r);
+}
+
+std::int64_t DeviceEmitter::DeviceTimeUs(std::int64_t stamp_us) const {
+  const double drifted = static_cast<double>(stamp_us) * (1.0 + config_.wheel_clock_ppm * 1e-6);
+  return config_.wheel_clock_start_us + static_cast<std::int64_t>(std::llround(drifted));
+}
+
+std::int64_t DeviceEmitter::ArrivalUs(std::int64_t stamp_us) {
+  double late = static_cast<double>(config_.can_latency_us);
+  if (config_.can_jitter_us > 0.0) late += std::exponential_distribution<double>(1.0 / config_.can_jitter_us)(bus_random_);
+  if (config_.can_spike_fraction > 0.0 && std::uniform_real_distribution<double>(0.0, 1.0)(bus_random_) < config_.can_spike_fraction) {
+    late += std::uniform_real_distribution<double>(0.0, config_.can_spike_us)(bus_random_);
+  }
+  std::int64_t arrival = stamp_us + static_cast<std::int64_t>(std::llround(late));
+  if (arrival < last_arrival_us_) arrival = last_arrival_us_;  // a bus delivers in order
+  last_arrival_us_ = arrival;
+  return arrival;
 }
 
 void DeviceEmitter::AddGyro(const OdometrySample& sample) {
   GyroFrame g;
   g.yaw_rate_mrad_s = static_cast<std::int16_t>(std::lround(sample.gyro_yaw_rate * 1000.0f));
   g.sequence = gyro_seq_++;
-  g.time_10us = static_cast<std::uint32_t>((sample.stamp_us / kWheelTimeUnitUs) % kUnitsWrap);
+  g.time_10us = static_cast<std::uint32_t>((DeviceTimeUs(sample.stamp_us) / kWheelTimeUnitUs) % kUnitsWrap);
   CandumpRecord r;
-  r.stamp_us = sample.stamp_us;
+  r.stamp_us = ArrivalUs(sample.stamp_us);
   r.interface = config_.can_interface;
   r.frame = EncodeGyroFrame(g);
   can_.push_back(r);
