@@ -3,7 +3,7 @@
 namespace dpcr {
 
 DevicePipeline::DevicePipeline(const DevicePipelineConfig& config, DeviceSink* sink)
-    : sink_(sink), lidar_(config.lidar), odometry_(config.wheels), wheel_timeout_us_(config.wheel_timeout_us) {}
+    : sink_(sink), lidar_(config.lidar), odometry_(config.wheels), wheel_time_(config.wheel_clock), wheel_timeout_us_(config.wheel_timeout_us) {}
 
 std::size_t DevicePipeline::FeedLidar(const std::uint8_t* data, std::size_t size, std::int64_t arrival_us) {
   const std::size_t used = lidar_.Feed(data, size, arrival_us);

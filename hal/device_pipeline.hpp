@@ -39,6 +39,8 @@ struct DevicePipelineConfig {
   // wheel board silent): the odometry resumes from the pose it had, the gap's motion not added
   // (the lidar alone tracked it; added at once it would be a jump in the odometry prior).
   std::int64_t wheel_timeout_us = 500000;
+  // How the wheel board's clock is mapped to host time (kFirstFrame: only to measure the difference).
+  DeviceTimeBase::Mode wheel_clock = DeviceTimeBase::Mode::kTracked;
 };
 
 struct DevicePipelineCounters {

@@ -61,6 +61,8 @@ std::int64_t DeviceTimeBase::ToHostUs(std::int64_t device_us, std::int64_t host_
   const std::int64_t offset = host_us - device_us;
   if (!started_) {
     Restart(device_us, offset);
+  } else if (mode_ == Mode::kFirstFrame) {
+    // the offset of the first frame stays
   } else if (std::llabs(offset - OffsetAt(device_us)) > kRestartUs) {
     ++restarts_;
     Restart(device_us, offset);

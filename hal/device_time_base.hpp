@@ -19,6 +19,12 @@ namespace dpcr {
 
 class DeviceTimeBase {
  public:
+  enum class Mode : std::uint8_t {
+    kTracked,     // the minimum-latency, drift-following estimate (the firmware's)
+    kFirstFrame,  // the first frame's offset for ever (the old way: for comparison only)
+  };
+  explicit DeviceTimeBase(Mode mode = Mode::kTracked) : mode_(mode) {}
+
   static constexpr std::int64_t kBlockUs = 2000000;      // 2 s: ~200 ticks frames per minimum
   static constexpr int kBlocks = 32;                     // a 64 s window
   static constexpr std::int64_t kRestartUs = 1000000;    // an offset jump past 1 s: a new clock
@@ -46,6 +52,7 @@ class DeviceTimeBase {
   void FitDrift();
   std::int64_t OffsetAt(std::int64_t device_us) const;
 
+  Mode mode_;
   bool started_ = false;
   Block blocks_[kBlocks] = {};
   int block_count_ = 0;

@@ -70,9 +70,12 @@ void DeviceEmitter::AddOdometry(const OdometrySample& sample) {
   can_.push_back(r);
 }
 
-std::int64_t DeviceEmitter::DeviceTimeUs(std::int64_t stamp_us) const {
-  const double drifted = static_cast<double>(stamp_us) * (1.0 + config_.wheel_clock_ppm * 1e-6);
-  return config_.wheel_clock_start_us + static_cast<std::int64_t>(std::llround(drifted));
+std::int64_t DeviceEmitter::DeviceTimeUs(std::int64_t stamp_us) {
+  if (first_stamp_us_ == INT64_MIN) first_stamp_us_ = stamp_us;
+  if (config_.wheel_clock_ppm == 0.0 && config_.wheel_clock_start_us == 0) return stamp_us;  // an ideal bus
+  // The board's clock starts with the run (at wheel_clock_start_us) and gains ppm on the host's.
+  const double since = static_cast<double>(stamp_us - first_stamp_us_);
+  return config_.wheel_clock_start_us + static_cast<std::int64_t>(std::llround(since * (1.0 + config_.wheel_clock_ppm * 1e-6)));
 }
 
 std::int64_t DeviceEmitter::ArrivalUs(std::int64_t stamp_us) {

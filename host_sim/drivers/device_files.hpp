@@ -82,11 +82,12 @@ class DeviceEmitter {
  private:
   void AddGyro(const OdometrySample& sample);
   // The wheel board's clock at host time `stamp_us`, and a frame's arrival (in order).
-  std::int64_t DeviceTimeUs(std::int64_t stamp_us) const;
+  std::int64_t DeviceTimeUs(std::int64_t stamp_us);
   std::int64_t ArrivalUs(std::int64_t stamp_us);
   DeviceFilesConfig config_;
   std::mt19937 bus_random_;
   std::int64_t last_arrival_us_ = INT64_MIN;
+  std::int64_t first_stamp_us_ = INT64_MIN;
   std::string dir_;
   UartCaptureWriter uart_;
   std::vector<CandumpRecord> can_;
