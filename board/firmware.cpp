@@ -272,6 +272,8 @@ void Firmware::CollectSave() {
 
 void Firmware::ServiceTimers() {
   const std::int64_t now = ports_.clock->NowUs();
+  // Frames that queued while a long scan was mapped are read before the wheels are judged silent.
+  ServiceCan();
   WatchWheels(now);
   TryReopenCan(now);
   CollectSave();

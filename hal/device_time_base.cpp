@@ -64,9 +64,14 @@ std::int64_t DeviceTimeBase::ToHostUs(std::int64_t device_us, std::int64_t host_
   } else if (mode_ == Mode::kFirstFrame) {
     // the offset of the first frame stays
   } else if (std::llabs(offset - OffsetAt(device_us)) > kRestartUs) {
-    ++restarts_;
-    Restart(device_us, offset);
+    if (late_since_us_ == INT64_MIN || device_us < late_since_us_) late_since_us_ = device_us;
+    if (device_us - late_since_us_ >= kRestartHoldUs) {
+      ++restarts_;
+      late_since_us_ = INT64_MIN;
+      Restart(device_us, offset);
+    }
   } else {
+    late_since_us_ = INT64_MIN;
     if (device_us - block_start_us_ >= kBlockUs) {
       CloseBlock();
       current_ = Block{device_us, offset};

@@ -1,16 +1,17 @@
-// The wheel board's clock in host time. Each CAN frame carries its device time d and arrives at
-// host time a = d + offset + latency: latency >= the bus's minimum, with jitter above it (a busy
-// bus, a late interrupt, a loaded SoC), and the offset moves with the drift between the two
-// crystals (20-50 ppm: 80-210 ms in 70 minutes). The first frame's offset (the old way) keeps
-// that frame's latency and none of the drift.
+// The wheel board's clock in host time (and the LD06's: hal/ld06_decoder.hpp). Each frame
+// carries its device time d and arrives at host time a = d + offset + latency: latency >= the
+// bus's minimum, with jitter above it (a busy bus, a late interrupt, a loaded SoC), and the
+// offset moves with the drift between the two crystals (20-50 ppm: 80-210 ms in 70 minutes). The
+// first frame's offset (the old way) keeps that frame's latency and none of the drift.
 //
 // The estimate follows the lower envelope of a - d, the least-delayed frames: the smallest
 // a - d of each block of kBlockUs device time, over the last kBlocks blocks; their drift is the
 // least-squares slope of those minima, and the offset at device time d is the lowest of them,
 // each carried forward to d along that slope. Jitter only ever delays a frame, so the minima
-// track the minimum latency; the slope follows the drift. A jump of the offset by more than
-// kRestartUs (the wheel board restarted its clock) starts the estimate again.
-// No heap, fixed state (~1 KiB).
+// track the minimum latency; the slope follows the drift. Frames more than kRestartUs off the
+// estimate are left out (a stalled reader); when every frame has been that far off for
+// kRestartHoldUs of device time, the device clock itself has jumped (the wheel board restarted):
+// the estimate starts again. No heap, fixed state (~1 KiB).
 #pragma once
 
 #include <cstdint>
@@ -27,7 +28,8 @@ class DeviceTimeBase {
 
   static constexpr std::int64_t kBlockUs = 2000000;      // 2 s: ~200 ticks frames per minimum
   static constexpr int kBlocks = 32;                     // a 64 s window
-  static constexpr std::int64_t kRestartUs = 1000000;    // an offset jump past 1 s: a new clock
+  static constexpr std::int64_t kRestartUs = 1000000;    // a frame this far off is an outlier...
+  static constexpr std::int64_t kRestartHoldUs = 3000000; // ...and 3 s of them a new clock
   static constexpr double kMaxDriftPpm = 500.0;          // a fitted drift past this is noise
 
   // Observes one frame (device time `device_us`, unwrapped; arrival `host_us`) and returns its
@@ -60,6 +62,7 @@ class DeviceTimeBase {
   Block current_{};              // the block being filled
   std::int64_t block_start_us_ = 0;
   std::int64_t last_device_us_ = 0;
+  std::int64_t late_since_us_ = INT64_MIN;  // device time of the first of a run of outliers
   double slope_ = 0.0;           // d(offset)/d(device time)
   std::uint32_t restarts_ = 0;
 };
