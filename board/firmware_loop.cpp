@@ -104,7 +104,7 @@ bool SetUp(const FirmwareConfig& config, Firmware* firmware, BoardPorts* board, 
 
 // The final map save; the ports close when the caller's BoardPorts goes.
 int TearDown(Firmware* firmware, BoardPorts* board, int exit_code) {
-  if (board->recording && !board->recorder.Close() && exit_code == 0) exit_code = 1;
+  if (board->recording && !board->recorder.Close(board->clock.NowUs()) && exit_code == 0) exit_code = 1;
   return firmware->Finish(exit_code);
 }
 

@@ -92,8 +92,13 @@ void StreamRecorder::RecordCan(std::int64_t stamp_us, const CanFrame& f) {
   std::fputc('\n', can_);
 }
 
-bool StreamRecorder::Close() {
+bool StreamRecorder::Close(std::int64_t end_us) {
   bool ok = true;
+  if (uart_ != nullptr && end_us != INT64_MIN) {
+    std::fputs("# end ", uart_);  // the replay takes the last revolution after the frames received before this
+    PrintStamp(uart_, end_us);
+    std::fputc('\n', uart_);
+  }
   if (uart_ != nullptr) ok = std::fclose(uart_) == 0 && ok;
   if (can_ != nullptr) ok = std::fclose(can_) == 0 && ok;
   uart_ = nullptr;

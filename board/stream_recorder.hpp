@@ -27,7 +27,9 @@ class StreamRecorder {
             const char* lidar, std::string* error);
   void RecordLidar(std::int64_t stamp_us, const std::uint8_t* data, std::size_t size);
   void RecordCan(std::int64_t stamp_us, const CanFrame& frame);
-  bool Close();
+  // `end_us`: when the firmware stops reading (it then takes the last revolution), written as
+  // "# end STAMP" in lidar.uart so that the replay does the same; INT64_MIN: none.
+  bool Close(std::int64_t end_us = INT64_MIN);
 
  private:
   std::FILE* uart_ = nullptr;

@@ -156,7 +156,7 @@ DeviceReplay::DeviceReplay(const DeviceFilesConfig& files, const LidarStreamConf
 
 bool DeviceReplay::Open(const std::string& uart_path, const std::string& candump_path, std::string* error) {
   std::vector<UartChunk> chunks;
-  if (!uart_path.empty() && !ReadUartCapture(uart_path, &chunks, error)) return false;
+  if (!uart_path.empty() && !ReadUartCapture(uart_path, &chunks, error, &uart_end_us_)) return false;
   std::vector<CandumpRecord> records;
   if (!candump_path.empty() && !ReadCandumpLog(candump_path, &records, error)) return false;
   uart_.reset(new UartCaptureSource(std::move(chunks)));
@@ -176,7 +176,8 @@ void DeviceReplay::Run() {
     if (!flushed && uart_t == INT64_MAX) {
       // The capture's last revolution (no wrap follows to close it), when the firmware's poll loop
       // notices the end of its UART: after the frames of the next CAN instant, or at once.
-      if (flush_after_us == INT64_MIN) flush_after_us = can_t;
+      // A firmware recording says when its revolution was taken: after every frame received before.
+      if (flush_after_us == INT64_MIN) flush_after_us = uart_end_us_ != INT64_MIN ? uart_end_us_ : can_t;
       if (can_t > flush_after_us || can_t == INT64_MAX) {
         pipeline_->FlushLidar();
         flushed = true;

@@ -115,6 +115,7 @@ class DeviceReplay {
   std::unique_ptr<DevicePipeline> pipeline_;
   std::unique_ptr<UartCaptureSource> uart_;
   std::unique_ptr<CandumpSource> can_;
+  std::int64_t uart_end_us_ = INT64_MIN;  // the capture's "# end" stamp, if any
 };
 
 }  // namespace dpcr

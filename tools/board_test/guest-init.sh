@@ -28,9 +28,7 @@ ip link add dev vcan0 type vcan && ip link set up vcan0 || finish "vcan0 failed"
 
 # The robot's parameters: the scenario's device.json (dpcr-sim wrote it: 4096 ticks, angle +1) as
 # the --config file; the board's own on the command line.
-# The lidar's packets are stamped by its own clock (--lidar-timing device), mapped to the guest's
-# like the wheel board's: a starved emulated CPU reads late, the stamps stay right.
-dpcr-firmware --config /scenario/device.json --lidar-timing device --uart /dev/ttyS0 --can vcan0 --map-dir /out/map \
+dpcr-firmware --config /scenario/device.json --uart /dev/ttyS0 --can vcan0 --map-dir /out/map \
   --trajectory /out/trajectory.tum --record /out/rec --autosave 20 --lidar-timeout-ms 5000 --status-period 10 \
   2> /out/firmware.log &
 fw=$!
