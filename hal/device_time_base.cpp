@@ -63,15 +63,10 @@ std::int64_t DeviceTimeBase::ToHostUs(std::int64_t device_us, std::int64_t host_
     Restart(device_us, offset);
   } else if (mode_ == Mode::kFirstFrame) {
     // the offset of the first frame stays
-  } else if (std::llabs(offset - OffsetAt(device_us)) > kRestartUs) {
-    if (late_since_us_ == INT64_MIN || device_us < late_since_us_) late_since_us_ = device_us;
-    if (device_us - late_since_us_ >= kRestartHoldUs) {
-      ++restarts_;
-      late_since_us_ = INT64_MIN;
-      Restart(device_us, offset);
-    }
+  } else if (device_us < last_device_us_ - kRestartUs) {
+    ++restarts_;  // the device clock went back: the board restarted
+    Restart(device_us, offset);
   } else {
-    late_since_us_ = INT64_MIN;
     if (device_us - block_start_us_ >= kBlockUs) {
       CloseBlock();
       current_ = Block{device_us, offset};

@@ -8,10 +8,9 @@
 // a - d of each block of kBlockUs device time, over the last kBlocks blocks; their drift is the
 // least-squares slope of those minima, and the offset at device time d is the lowest of them,
 // each carried forward to d along that slope. Jitter only ever delays a frame, so the minima
-// track the minimum latency; the slope follows the drift. Frames more than kRestartUs off the
-// estimate are left out (a stalled reader); when every frame has been that far off for
-// kRestartHoldUs of device time, the device clock itself has jumped (the wheel board restarted):
-// the estimate starts again. No heap, fixed state (~1 KiB).
+// track the minimum latency (a reader stalled for seconds only raises a - d: ignored); the slope
+// follows the drift. A device clock that steps back by more than kRestartUs (the board
+// restarted) starts the estimate again. No heap, fixed state (~1 KiB).
 #pragma once
 
 #include <cstdint>
@@ -28,8 +27,7 @@ class DeviceTimeBase {
 
   static constexpr std::int64_t kBlockUs = 2000000;      // 2 s: ~200 ticks frames per minimum
   static constexpr int kBlocks = 32;                     // a 64 s window
-  static constexpr std::int64_t kRestartUs = 1000000;    // a frame this far off is an outlier...
-  static constexpr std::int64_t kRestartHoldUs = 3000000; // ...and 3 s of them a new clock
+  static constexpr std::int64_t kRestartUs = 1000000;    // the device clock back by 1 s: a new clock
   static constexpr double kMaxDriftPpm = 500.0;          // a fitted drift past this is noise
 
   // Observes one frame (device time `device_us`, unwrapped; arrival `host_us`) and returns its
@@ -62,7 +60,6 @@ class DeviceTimeBase {
   Block current_{};              // the block being filled
   std::int64_t block_start_us_ = 0;
   std::int64_t last_device_us_ = 0;
-  std::int64_t late_since_us_ = INT64_MIN;  // device time of the first of a run of outliers
   double slope_ = 0.0;           // d(offset)/d(device time)
   std::uint32_t restarts_ = 0;
 };

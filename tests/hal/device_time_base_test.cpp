@@ -67,17 +67,16 @@ TEST_CASE("device time base: the first frame maps as before; a late first frame 
   CHECK(base.offset_us() == 21000);
 }
 
-TEST_CASE("device time base: frames a second late are outliers; 3 s of them, a restarted clock") {
+TEST_CASE("device time base: a reader stalled for seconds moves no stamp; a device clock that steps back restarts it") {
   dpcr::DeviceTimeBase base;
   for (int i = 0; i < 1000; ++i) base.ToHostUs(7000000 + i * 10000, 1000000 + i * 10000 + 300);
-  // A reader stalled for 1.5 s: the frames it then reads are late, their stamps stay right.
-  for (int i = 1000; i < 1150; ++i) CHECK(base.ToHostUs(7000000 + i * 10000, 12500000 + 300) == 1000000 + i * 10000 + 300);
+  // A reader stalled for 4 s: the frames it then reads are late, their stamps stay right.
+  for (int i = 1000; i < 1400; ++i) CHECK(base.ToHostUs(7000000 + i * 10000, 15000000 + 300) == 1000000 + i * 10000 + 300);
   CHECK(base.restarts() == 0);
-  // The board rebooted: its clock starts again near zero, and stays so. After 3 s: a new estimate.
-  std::int64_t host = 0;
-  for (int i = 0; i <= 300; ++i) host = base.ToHostUs(2000 + i * 10000, 20000300 + i * 10000);
+  // The board rebooted: its clock starts again near zero.
+  CHECK(base.ToHostUs(2000, 20000300) == 20000300);
   CHECK(base.restarts() == 1);
-  CHECK(host == 20000300 + 300 * 10000);
+  CHECK(base.ToHostUs(12000, 20010300) == 20010300);
 }
 
 TEST_CASE("device time base: the drift is fitted from the window's minima") {
