@@ -19,10 +19,21 @@ class Posix final : public FileOps {
   int Unlink(const char* path) override { return ::unlink(path); }
 };
 
-std::string DirectoryOf(const std::string& path) {
+// The directory of `path` into `dir`, reusing its storage.
+void DirectoryOf(const std::string& path, std::string* dir) {
   const std::size_t slash = path.rfind('/');
-  return slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+  if (slash == std::string::npos) {
+    dir->assign(".");
+  } else if (slash == 0) {
+    dir->assign("/");
+  } else {
+    dir->assign(path, 0, slash);
+  }
 }
+
+// Paths up to this long are built without allocating (the firmware saves from a thread that
+// allocates nothing after start-up); longer ones still work.
+constexpr std::size_t kPathReserve = 512;
 
 }  // namespace
 
@@ -48,10 +59,16 @@ void AtomicFileWriter::Abort() {
   errno = saved;
 }
 
+AtomicFileWriter::AtomicFileWriter(FileOps& ops) : ops_(ops) {
+  path_.reserve(kPathReserve);
+  tmp_.reserve(kPathReserve + 4);
+  dir_.reserve(kPathReserve);
+}
+
 bool AtomicFileWriter::Begin(const std::string& path, std::string* error) {
   Abort();
-  path_ = path;
-  tmp_ = path + ".tmp";
+  path_.assign(path);
+  tmp_.assign(path).append(".tmp");
   fd_ = ops_.Open(tmp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd_ < 0) {
     *error = tmp_ + ": open: " + std::strerror(errno);
@@ -103,17 +120,17 @@ bool AtomicFileWriter::Commit(std::string* error) {
     *error = path_ + ": rename: " + std::strerror(saved);
     return false;
   }
-  const std::string dir = DirectoryOf(path_);
-  const int dfd = ops_.Open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC, 0);
+  DirectoryOf(path_, &dir_);
+  const int dfd = ops_.Open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC, 0);
   if (dfd < 0) {
-    *error = dir + ": open directory: " + std::strerror(errno);
+    *error = dir_ + ": open directory: " + std::strerror(errno);
     return false;
   }
   const bool ok = ops_.Fsync(dfd) == 0;
   const int saved = errno;
   (void)ops_.Close(dfd);
   errno = saved;
-  if (!ok) *error = dir + ": fsync directory: " + std::strerror(saved);
+  if (!ok) *error = dir_ + ": fsync directory: " + std::strerror(saved);
   return ok;
 }
 
@@ -122,13 +139,23 @@ bool WriteFileAtomic(const std::string& path, const void* data, std::size_t size
   return w.Begin(path, error) && w.Append(data, size, error) && w.Commit(error);
 }
 
+AtomicFileStore::AtomicFileStore(std::string dir, FileOps& ops) : dir_(std::move(dir)), ops_(ops), writer_(ops) {
+  path_.reserve(dir_.size() + kPathReserve);
+}
+
+const std::string& AtomicFileStore::PathOf(const char* name) {
+  path_.assign(dir_).append("/").append(name);
+  return path_;
+}
+
 IoStatus AtomicFileStore::Write(const char* name, const std::uint8_t* data, std::size_t size) {
-  if (WriteFileAtomic(dir_ + "/" + name, data, size, &last_error_, ops_)) return IoStatus::kOk;
-  return IoStatus::kIoError;
+  const bool ok = writer_.Begin(PathOf(name), &last_error_) && writer_.Append(data, size, &last_error_) &&
+                  writer_.Commit(&last_error_);
+  return ok ? IoStatus::kOk : IoStatus::kIoError;
 }
 
 IoStatus AtomicFileStore::Begin(const char* name) {
-  return writer_.Begin(dir_ + "/" + name, &last_error_) ? IoStatus::kOk : IoStatus::kIoError;
+  return writer_.Begin(PathOf(name), &last_error_) ? IoStatus::kOk : IoStatus::kIoError;
 }
 
 IoStatus AtomicFileStore::Append(const std::uint8_t* data, std::size_t size) {
@@ -139,7 +166,7 @@ IoStatus AtomicFileStore::Commit() { return writer_.Commit(&last_error_) ? IoSta
 
 ByteRead AtomicFileStore::ReadAt(const char* name, std::uint64_t offset, std::uint8_t* buffer, std::size_t capacity) {
   ByteRead r;
-  const std::string path = dir_ + "/" + name;
+  const std::string& path = PathOf(name);
   const int fd = ops_.Open(path.c_str(), O_RDONLY | O_CLOEXEC, 0);
   if (fd < 0) {
     r.status = errno == ENOENT ? IoStatus::kNotFound : IoStatus::kIoError;

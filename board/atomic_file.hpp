@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <string>
 #include <sys/types.h>
+#include <utility>
 
 #include "hal/ports.hpp"
 
@@ -35,7 +36,7 @@ FileOps& PosixFileOps();
 // Commit removes the temp file and leaves `path` as it was. Errors read "file: step: strerror".
 class AtomicFileWriter {
  public:
-  explicit AtomicFileWriter(FileOps& ops = PosixFileOps()) : ops_(ops) {}
+  explicit AtomicFileWriter(FileOps& ops = PosixFileOps());
   ~AtomicFileWriter() { Abort(); }
   AtomicFileWriter(const AtomicFileWriter&) = delete;
   AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
@@ -54,6 +55,7 @@ class AtomicFileWriter {
   FileOps& ops_;
   std::string path_;
   std::string tmp_;
+  std::string dir_;
   int fd_ = -1;
 };
 
@@ -64,7 +66,7 @@ bool WriteFileAtomic(const std::string& path, const void* data, std::size_t size
 // The board's BlobStore port: blob `name` is the file DIR/name, each write atomic as above.
 class AtomicFileStore : public BlobStore {
  public:
-  explicit AtomicFileStore(std::string dir, FileOps& ops = PosixFileOps()) : dir_(std::move(dir)), ops_(ops), writer_(ops) {}
+  explicit AtomicFileStore(std::string dir, FileOps& ops = PosixFileOps());
   // kIoError with errno kept; last_error() then says which file and which step failed.
   IoStatus Write(const char* name, const std::uint8_t* data, std::size_t size) override;
   IoStatus Begin(const char* name) override;
@@ -76,9 +78,12 @@ class AtomicFileStore : public BlobStore {
   const std::string& dir() const { return dir_; }
 
  private:
+  const std::string& PathOf(const char* name);  // DIR/name, in storage kept between calls
+
   std::string dir_;
   FileOps& ops_;
   AtomicFileWriter writer_;
+  std::string path_;
   std::string last_error_;
 };
 

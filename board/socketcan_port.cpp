@@ -11,6 +11,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include "board/errno_name.hpp"
 #include "hal/wheel_can_protocol.hpp"
 
 namespace dpcr::board {
@@ -21,7 +22,7 @@ static_assert(kCanEffFlag == CAN_EFF_FLAG && kCanRtrFlag == CAN_RTR_FLAG && kCan
 int OpenSocketCan(const std::string& interface, std::string* error) {
   const int fd = ::socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW);
   if (fd < 0) {
-    *error = interface + ": socket(PF_CAN): " + std::strerror(errno);
+    *error = interface + ": socket(PF_CAN): " + DescribeErrno(errno);
     return -1;
   }
   ifreq ifr{};
@@ -32,7 +33,7 @@ int OpenSocketCan(const std::string& interface, std::string* error) {
   }
   std::strncpy(ifr.ifr_name, interface.c_str(), sizeof(ifr.ifr_name) - 1);
   if (::ioctl(fd, SIOCGIFINDEX, &ifr) != 0) {
-    *error = interface + ": no such CAN interface: " + std::strerror(errno);
+    *error = interface + ": no such CAN interface: " + DescribeErrno(errno);
     ::close(fd);
     return -1;
   }
@@ -43,7 +44,7 @@ int OpenSocketCan(const std::string& interface, std::string* error) {
   const can_err_mask_t err_mask = CAN_ERR_MASK;
   if (::setsockopt(fd, SOL_CAN_RAW, CAN_RAW_FILTER, filters, sizeof(filters)) != 0 ||
       ::setsockopt(fd, SOL_CAN_RAW, CAN_RAW_ERR_FILTER, &err_mask, sizeof(err_mask)) != 0) {
-    *error = interface + ": setsockopt(CAN_RAW_FILTER): " + std::strerror(errno);
+    *error = interface + ": setsockopt(CAN_RAW_FILTER): " + DescribeErrno(errno);
     ::close(fd);
     return -1;
   }
@@ -51,7 +52,7 @@ int OpenSocketCan(const std::string& interface, std::string* error) {
   addr.can_family = AF_CAN;
   addr.can_ifindex = ifr.ifr_ifindex;
   if (::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0) {
-    *error = interface + ": bind: " + std::strerror(errno);
+    *error = interface + ": bind: " + DescribeErrno(errno);
     ::close(fd);
     return -1;
   }
@@ -84,13 +85,22 @@ IoStatus WriteCanFrame(int fd, const CanFrame& frame) {
 }
 
 bool SocketCanPort::Open(const std::string& interface, std::string* error) {
+  interface_ = interface;
   owned_.Reset(OpenSocketCan(interface, error));
   fd_ = owned_.get();
   return fd_ >= 0;
 }
 
+IoStatus SocketCanPort::Reopen() {
+  if (interface_.empty()) return IoStatus::kIoError;  // a borrowed fd cannot be reopened
+  owned_.Reset(OpenSocketCan(interface_, &reopen_error_));
+  fd_ = owned_.get();
+  return fd_ >= 0 ? IoStatus::kOk : IoStatus::kIoError;
+}
+
 void SocketCanPort::Borrow(int fd) {
   owned_.Reset();
+  interface_.clear();
   fd_ = fd;
   ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
 }
@@ -100,6 +110,12 @@ CanRead SocketCanPort::Read() {
   r.status = ReadCanFrame(fd_, &r.frame);
   const int saved = errno;  // kIoError keeps the read's errno
   r.stamp_us = clock_->NowUs();
+  if (r.status == IoStatus::kEndOfStream || r.status == IoStatus::kIoError) {
+    // Failed (the interface went down, bus-off): closed, so that poll() no longer wakes for it;
+    // Reopen() tries again.
+    owned_.Reset();
+    fd_ = -1;
+  }
   errno = saved;
   return r;
 }

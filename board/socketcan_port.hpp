@@ -29,11 +29,16 @@ class SocketCanPort : public CanSource {
   bool Open(const std::string& interface, std::string* error);
   // Reads from an fd opened elsewhere (tests: a socketpair end), made non-blocking, never closed here.
   void Borrow(int fd);
-  int fd() const { return fd_; }  // to wait on with poll()
+  int fd() const { return fd_; }  // to wait on with poll(); -1 once failed (or never opened)
+  // A failed read closes the socket (the interface went down): kEndOfStream / kIoError.
   CanRead Read() override;
+  // Opens the interface given to Open again (the firmware's retry while it maps without wheels).
+  IoStatus Reopen() override;
 
  private:
   const Clock* clock_;
+  std::string interface_;
+  std::string reopen_error_;  // why the last reopen failed (the firmware only counts retries)
   UniqueFd owned_;
   int fd_ = -1;
 };

@@ -20,8 +20,27 @@ void PrintStamp(std::FILE* f, std::int64_t stamp_us) {
 
 StreamRecorder::~StreamRecorder() { Close(); }
 
-bool StreamRecorder::Open(const std::string& dir, const std::string& can_interface, std::string* error) {
+bool StreamRecorder::Open(const std::string& dir, const std::string& can_interface, const DeviceOptions& device,
+                          const char* lidar, std::string* error) {
   Close();
+  // device.json, the keys of dpcr-sim --emit-device (host_sim/drivers/device_files.cpp).
+  const std::string json_path = dir + "/device.json";
+  std::FILE* json = std::fopen(json_path.c_str(), "w");
+  if (json == nullptr) {
+    *error = json_path + ": " + std::strerror(errno);
+    return false;
+  }
+  std::fprintf(json,
+               "{\n  \"lidar\": \"%s\",\n  \"angle_sign\": %.1f,\n  \"wheel_radius_m\": %.9g,\n"
+               "  \"track_width_m\": %.9g,\n  \"ticks_per_rev\": %.9g,\n  \"max_range_m\": %.9g,\n"
+               "  \"laser_offset_m\": %.9g\n}\n",
+               lidar, static_cast<double>(device.angle_sign), static_cast<double>(device.wheels.wheel_radius_m),
+               static_cast<double>(device.wheels.track_width_m), static_cast<double>(device.wheels.ticks_per_rev),
+               static_cast<double>(device.max_range_m), static_cast<double>(device.laser_offset_m));
+  if (std::fclose(json) != 0) {
+    *error = json_path + ": " + std::strerror(errno);
+    return false;
+  }
   interface_ = can_interface;
   const std::string uart_path = dir + "/lidar.uart";
   const std::string can_path = dir + "/wheels.log";
@@ -73,8 +92,13 @@ void StreamRecorder::RecordCan(std::int64_t stamp_us, const CanFrame& f) {
   std::fputc('\n', can_);
 }
 
-bool StreamRecorder::Close() {
+bool StreamRecorder::Close(std::int64_t end_us) {
   bool ok = true;
+  if (uart_ != nullptr && end_us != INT64_MIN) {
+    std::fputs("# end ", uart_);  // the replay takes the last revolution after the frames received before this
+    PrintStamp(uart_, end_us);
+    std::fputc('\n', uart_);
+  }
   if (uart_ != nullptr) ok = std::fclose(uart_) == 0 && ok;
   if (can_ != nullptr) ok = std::fclose(can_) == 0 && ok;
   uart_ = nullptr;

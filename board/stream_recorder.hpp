@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 
+#include "hal/device_options.hpp"
 #include "hal/ports.hpp"
 
 namespace dpcr::board {
@@ -19,11 +20,16 @@ class StreamRecorder {
   StreamRecorder(const StreamRecorder&) = delete;
   StreamRecorder& operator=(const StreamRecorder&) = delete;
 
-  // Creates DIR/lidar.uart and DIR/wheels.log; `can_interface` names the frames' interface.
-  bool Open(const std::string& dir, const std::string& can_interface, std::string* error);
+  // Creates DIR/lidar.uart and DIR/wheels.log, and writes DIR/device.json (the device options
+  // the firmware runs with and its lidar, "ld06" / "xv11": what `dpcr-replay --uart` reads);
+  // `can_interface` names the frames' interface.
+  bool Open(const std::string& dir, const std::string& can_interface, const DeviceOptions& device,
+            const char* lidar, std::string* error);
   void RecordLidar(std::int64_t stamp_us, const std::uint8_t* data, std::size_t size);
   void RecordCan(std::int64_t stamp_us, const CanFrame& frame);
-  bool Close();
+  // `end_us`: when the firmware stops reading (it then takes the last revolution), written as
+  // "# end STAMP" in lidar.uart so that the replay does the same; INT64_MIN: none.
+  bool Close(std::int64_t end_us = INT64_MIN);
 
  private:
   std::FILE* uart_ = nullptr;

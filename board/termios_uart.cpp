@@ -6,6 +6,8 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include "board/errno_name.hpp"
+
 namespace dpcr::board {
 
 int OpenLidarUart(const std::string& device, int baud, std::string* error) {
@@ -18,12 +20,12 @@ int OpenLidarUart(const std::string& device, int baud, std::string* error) {
   }
   const int fd = ::open(device.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
-    *error = device + ": open: " + std::strerror(errno);
+    *error = device + ": open: " + DescribeErrno(errno);
     return -1;
   }
   termios tio{};
   if (::tcgetattr(fd, &tio) != 0) {
-    *error = device + ": tcgetattr (not a serial port?): " + std::strerror(errno);
+    *error = device + ": tcgetattr (not a serial port?): " + DescribeErrno(errno);
     ::close(fd);
     return -1;
   }
@@ -35,7 +37,7 @@ int OpenLidarUart(const std::string& device, int baud, std::string* error) {
   tio.c_cc[VTIME] = 0;
   if (::cfsetispeed(&tio, speed) != 0 || ::cfsetospeed(&tio, speed) != 0 ||
       ::tcsetattr(fd, TCSANOW, &tio) != 0) {
-    *error = device + ": tcsetattr: " + std::strerror(errno);
+    *error = device + ": tcsetattr: " + DescribeErrno(errno);
     ::close(fd);
     return -1;
   }
@@ -60,6 +62,8 @@ ByteRead TermiosUart::Read(std::uint8_t* buffer, std::size_t capacity) {
   }
   const int saved = errno;  // kIoError keeps the read's errno
   r.stamp_us = clock_->NowUs();
+  // Ended or failed: closed, so that poll() no longer wakes for it.
+  if (r.status == IoStatus::kEndOfStream || r.status == IoStatus::kIoError) fd_.Reset();
   errno = saved;
   return r;
 }

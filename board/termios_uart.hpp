@@ -20,7 +20,7 @@ class TermiosUart : public ByteSource {
   explicit TermiosUart(const Clock* clock) : clock_(clock) {}
   // False with "device: step: strerror" in `error`.
   bool Open(const std::string& device, int baud, std::string* error);
-  int fd() const { return fd_.get(); }  // to wait on with poll()
+  int fd() const { return fd_.get(); }  // to wait on with poll(); -1 once ended or failed
   // Call once poll() says readable: raw mode reads never wait (VMIN = VTIME = 0), so an empty
   // read then means the device hung up (kEndOfStream). kWouldBlock on EAGAIN/EINTR, kIoError
   // (errno kept) otherwise.

@@ -3,7 +3,7 @@
 namespace dpcr {
 
 DevicePipeline::DevicePipeline(const DevicePipelineConfig& config, DeviceSink* sink)
-    : sink_(sink), lidar_(config.lidar), odometry_(config.wheels) {}
+    : sink_(sink), lidar_(config.lidar), odometry_(config.wheels), wheel_time_(config.wheel_clock), wheel_timeout_us_(config.wheel_timeout_us) {}
 
 std::size_t DevicePipeline::FeedLidar(const std::uint8_t* data, std::size_t size, std::int64_t arrival_us) {
   const std::size_t used = lidar_.Feed(data, size, arrival_us);
@@ -48,6 +48,11 @@ void DevicePipeline::FeedCan(const CanFrame& frame, std::int64_t received_us) {
   }
   if (decoded != CanDecodeResult::kTicks) return;
   gyro_frames_without_ticks_ = 0;
+  if (last_ticks_us_ != INT64_MIN && received_us - last_ticks_us_ > wheel_timeout_us_) {
+    odometry_.Resume();
+    ++wheel_gaps_;
+  }
+  last_ticks_us_ = received_us;
   const std::int64_t stamp_us = wheel_time_.ToHostUs(wheels_.ticks().device_time_us, received_us);
   OdometrySample sample = odometry_.Update(wheels_.ticks(), stamp_us);
   sample.has_gyro = have_gyro_;
@@ -62,6 +67,7 @@ DevicePipelineCounters DevicePipeline::counters() const {
   c.can = wheels_.counters();
   c.scans = scans_;
   c.odometry = odometry_samples_;
+  c.wheel_gaps = wheel_gaps_;
   return c;
 }
 

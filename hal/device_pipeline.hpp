@@ -1,7 +1,8 @@
 // The device path from received bytes and frames to mapper inputs, one for the firmware and the
 // host replay: lidar bytes -> LidarStream (LD06/XV-11 decoder + ScanAssembler) -> scans; CAN
 // frames -> WheelCanDecoder -> DiffDriveOdometry -> odometry samples carrying the last gyro
-// rate. Both go to a DeviceSink: the mapper, or a wrapper that also counts or times.
+// rate, stamped in host time through the wheel board's clock (DeviceTimeBase: minimum latency,
+// drift followed). Both go to a DeviceSink: the mapper, or a wrapper that also counts or times.
 // Allocation-free: all state lives in the object (~71 KiB with the vacuum scan: build it once, at
 // start-up, off the stack).
 #pragma once
@@ -13,6 +14,7 @@
 #include "core/front_end/odometry.hpp"
 #include "core/geometry/scan.hpp"
 #include "hal/can_frame.hpp"
+#include "hal/device_time_base.hpp"
 #include "hal/diff_drive_odometry.hpp"
 #include "hal/lidar_stream.hpp"
 #include "hal/wheel_can_protocol.hpp"
@@ -33,6 +35,12 @@ class DeviceSink {
 struct DevicePipelineConfig {
   LidarStreamConfig lidar;
   DiffDriveConfig wheels;
+  // A ticks frame received this long after the previous one ends a wheel gap (the bus down, the
+  // wheel board silent): the odometry resumes from the pose it had, the gap's motion not added
+  // (the lidar alone tracked it; added at once it would be a jump in the odometry prior).
+  std::int64_t wheel_timeout_us = 500000;
+  // How the wheel board's clock is mapped to host time (kFirstFrame: only to measure the difference).
+  DeviceTimeBase::Mode wheel_clock = DeviceTimeBase::Mode::kTracked;
 };
 
 struct DevicePipelineCounters {
@@ -40,6 +48,7 @@ struct DevicePipelineCounters {
   WheelCanCounters can;
   std::uint32_t scans = 0;
   std::uint32_t odometry = 0;
+  std::uint32_t wheel_gaps = 0;  // wheel gaps the odometry resumed after
 };
 
 class DevicePipeline {
@@ -58,7 +67,7 @@ class DevicePipeline {
   void FlushLidar();
 
   // One CAN frame received at host time `received_us`. A ticks frame becomes an odometry sample
-  // stamped on the wheel board's clock (anchored to host time at the first frame); a gyro frame
+  // stamped on the wheel board's clock (in host time: hal/device_time_base.hpp); a gyro frame
   // updates the rate the next samples carry, and once two have come without a ticks frame, none
   // ever (a robot without wheel encoders), each is a sample of its own (has_wheels false). Other frames are counted and ignored.
   void FeedCan(const CanFrame& frame, std::int64_t received_us);
@@ -66,6 +75,9 @@ class DevicePipeline {
   DevicePipelineCounters counters() const;
   // Host time of the last lidar packet decoded (0 before the first): for "lidar silent" checks.
   std::int64_t last_lidar_packet_us() const { return lidar_.last_packet_us(); }
+  // Host time a ticks frame was last received (INT64_MIN before the first): "wheels silent".
+  std::int64_t last_ticks_us() const { return last_ticks_us_; }
+  const DeviceTimeBase& wheel_time() const { return wheel_time_; }
 
  private:
   DeviceSink* sink_;
@@ -77,8 +89,11 @@ class DevicePipeline {
   bool have_gyro_ = false;
   std::uint32_t gyro_frames_without_ticks_ = 0;
   DeviceScan scan_;
+  std::int64_t wheel_timeout_us_;
+  std::int64_t last_ticks_us_ = INT64_MIN;
   std::uint32_t scans_ = 0;
   std::uint32_t odometry_samples_ = 0;
+  std::uint32_t wheel_gaps_ = 0;
 };
 
 }  // namespace dpcr

@@ -28,6 +28,8 @@ class DiffDriveOdometry {
   OdometrySample Update(const WheelTicks& ticks, std::int64_t stamp_us);
   Pose2 pose() const;
   void Reset();
+  // After a gap in the ticks: the next call only sets the reference again, the pose kept.
+  void Resume() { started_ = false; }
 
  private:
   DiffDriveConfig config_;
@@ -37,23 +39,6 @@ class DiffDriveOdometry {
   double x_ = 0.0;
   double y_ = 0.0;
   double theta_ = 0.0;
-};
-
-// Maps a device clock (already unwrapped, us) to host time with the offset seen at the first
-// sample. Clock drift is not corrected (ppm-level over a cleaning run).
-class DeviceTimeBase {
- public:
-  std::int64_t ToHostUs(std::int64_t device_us, std::int64_t host_us) {
-    if (!started_) {
-      started_ = true;
-      offset_us_ = host_us - device_us;
-    }
-    return device_us + offset_us_;
-  }
-
- private:
-  bool started_ = false;
-  std::int64_t offset_us_ = 0;
 };
 
 }  // namespace dpcr

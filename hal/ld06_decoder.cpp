@@ -131,16 +131,14 @@ LidarPacket ToLidarPacket(const Ld06Packet& packet, std::int64_t stamp_us) {
 std::int64_t Ld06TimeBase::ToHostUs(std::uint16_t device_ms, std::int64_t host_arrival_us) {
   if (!started_) {
     started_ = true;
-    last_ms_ = device_ms;
     unwrapped_ms_ = device_ms;
-    offset_us_ = host_arrival_us - static_cast<std::int64_t>(device_ms) * 1000;
-    return host_arrival_us;
+  } else {
+    int delta = static_cast<int>(device_ms) - static_cast<int>(last_ms_);
+    if (delta < -kLd06TimestampWrapMs / 2) delta += kLd06TimestampWrapMs;
+    unwrapped_ms_ += delta;
   }
-  int delta = static_cast<int>(device_ms) - static_cast<int>(last_ms_);
-  if (delta < -kLd06TimestampWrapMs / 2) delta += kLd06TimestampWrapMs;
-  unwrapped_ms_ += delta;
   last_ms_ = device_ms;
-  return unwrapped_ms_ * 1000 + offset_us_;
+  return clock_.ToHostUs(unwrapped_ms_ * 1000, host_arrival_us);
 }
 
 }  // namespace dpcr

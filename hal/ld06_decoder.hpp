@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "hal/device_time_base.hpp"
 #include "hal/lidar_packet.hpp"
 
 namespace dpcr {
@@ -76,14 +77,17 @@ LidarPacket ToLidarPacket(const Ld06Packet& packet, std::int64_t stamp_us);
 // the offset is fixed at the first packet, later packets are unwrapped against the last.
 class Ld06TimeBase {
  public:
+  // The packet's millisecond stamp (15 bits, wrapping) in host time: unwrapped, then mapped by
+  // the minimum-latency, drift-following estimate of hal/device_time_base.hpp (a late packet,
+  // a starved reader, the lidar's crystal drifting: none moves the stamps).
   std::int64_t ToHostUs(std::uint16_t device_ms, std::int64_t host_arrival_us);
-  void Reset() { started_ = false; }
+  void Reset() { *this = Ld06TimeBase(); }
 
  private:
   bool started_ = false;
   std::uint16_t last_ms_ = 0;
   std::int64_t unwrapped_ms_ = 0;
-  std::int64_t offset_us_ = 0;
+  DeviceTimeBase clock_;
 };
 
 }  // namespace dpcr

@@ -41,12 +41,43 @@ class CanSource {
  public:
   virtual ~CanSource() = default;
   virtual CanRead Read() = 0;
+  // After a failure (or a start without the bus): tries once to open the bus again, without
+  // waiting; kOk once it reads again. A source that cannot reopen says kIoError.
+  virtual IoStatus Reopen() { return IoStatus::kIoError; }
 };
 
 class Clock {
  public:
   virtual ~Clock() = default;
   virtual std::int64_t NowUs() const = 0;  // monotonic
+};
+
+// What the firmware's loop waits for: the board waits with poll() on the devices and a stop
+// signal; a test moves a replay clock to the next recorded byte or frame (no sleeps).
+struct PortEvents {
+  bool stop = false;   // a stop request (SIGTERM / SIGINT): save and exit
+  bool lidar = false;  // the lidar port has bytes, or hung up
+  bool can = false;    // the CAN port has frames, or failed
+  int error = 0;       // the wait itself failed (errno): the loop cannot go on
+};
+
+class PortWaiter {
+ public:
+  virtual ~PortWaiter() = default;
+  // Returns when an event is there or `timeout_us` has passed (no event then).
+  virtual PortEvents Wait(std::int64_t timeout_us) = 0;
+};
+
+// The service manager's view of the firmware (the board: systemd's notify socket). All calls
+// are cheap and never wait.
+class ServiceNotifier {
+ public:
+  virtual ~ServiceNotifier() = default;
+  virtual void Ready() = 0;     // start-up done: the service is running
+  virtual void Alive() = 0;     // the watchdog kick: the loop is turning
+  virtual void Stopping() = 0;  // the final save has begun
+  // How often Alive() must come (0: no watchdog).
+  virtual std::int64_t watchdog_period_us() const = 0;
 };
 
 // Persistent storage of named blobs; Write is atomic (the old blob survives a failed write).

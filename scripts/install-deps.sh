@@ -6,11 +6,11 @@
 #   --peer   + mrpt-apps: the optional side-by-side peer of tools/bench/run (MRPT icp-slam; large,
 #            never needed by CI)
 #   --fuzz   + clang and its runtime libraries (libFuzzer, sanitizers): scripts/fuzz.sh
-#   --all    + the fuzz level, cross compilers, qemu-user and the bare-metal toolchain (.ci/run;
-#            the default)
-#   --board  + qemu-system-arm and cpio for tools/emulated-board-test (not in CI yet). The
+#   --all    + the fuzz level, cross compilers, qemu-user, the bare-metal toolchain and
+#            qemu-system-arm + cpio for tools/emulated-board-test (.ci/run; the default). The
 #            emulated board's own kernel and busybox are fetched by that tool with apt-get
 #            download, not installed.
+#   --board  the same as --all (kept for old instructions)
 # Idempotent: installs only missing packages, and says nothing when all are present.
 set -euo pipefail
 
@@ -39,7 +39,7 @@ cross=(
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib  # baremetal core check
 )
 board=(
-  qemu-system-arm cpio               # tools/emulated-board-test: the emulated board and its initramfs
+  qemu-system-arm cpio file          # tools/emulated-board-test: the emulated board (arm and aarch64), its initramfs
 )
 case $level in
   --host) packages=("${host[@]}") ;;
@@ -47,8 +47,7 @@ case $level in
   --bench) packages=("${host[@]}" "${tests[@]}" "${bench[@]}") ;;
   --peer) packages=("${host[@]}" "${tests[@]}" "${bench[@]}" "${peer[@]}") ;;
   --fuzz) packages=("${host[@]}" "${fuzz[@]}") ;;
-  --all) packages=("${host[@]}" "${tests[@]}" "${fuzz[@]}" "${cross[@]}") ;;
-  --board) packages=("${host[@]}" "${tests[@]}" "${fuzz[@]}" "${cross[@]}" "${board[@]}") ;;
+  --all|--board) packages=("${host[@]}" "${tests[@]}" "${fuzz[@]}" "${cross[@]}" "${board[@]}") ;;
   *) echo "usage: $0 [--host|--tests|--bench|--peer|--fuzz|--all|--board]" >&2; exit 2 ;;
 esac
 

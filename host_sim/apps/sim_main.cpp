@@ -40,6 +40,8 @@ struct Options {
   std::string odometry = "wheels";  // wheels (+ gyro), gyro (no wheel encoders), none
   int spins = 0;                    // an in-place spin every this many waypoints (0: none)
   double lidar_min_hz = -1.0;       // the lowest revolution rate (-1: the lidar model's)
+  double wheel_clock_ppm = 35.0;    // --emit-device: the wheel board's clock drift (DeviceFilesConfig)
+  bool ideal_bus = false;           // --emit-device: no latency, jitter or drift on the CAN bus
 };
 
 // First registrations during the robot's in-place spins (metrics.json "spins").
@@ -67,6 +69,7 @@ std::unique_ptr<dpcr::DeviceEmitter> MakeEmitter(const Options& opt, const dpcr:
   files.laser_offset_m = config.lidar.mount.x;  // dpcr-sim's lidar faces forward on the robot's axis
   files.lidar = opt.lidar == "xv11" ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06;
   files.xv11_rate_hz = static_cast<float>(sim_config.lidar.rate_hz);
+  if (!opt.ideal_bus) dpcr::RealisticBus(&files, static_cast<std::uint32_t>(opt.seed), opt.wheel_clock_ppm);
   auto emitter = std::make_unique<dpcr::DeviceEmitter>(files);
   std::string error;
   if (!emitter->Open(opt.emit_device, &error)) throw std::runtime_error(error);
@@ -201,6 +204,11 @@ int main(int argc, char** argv) {
   app.add_flag("--fixed-plan", opt.fixed_plan, "every seed drives the world's own start pose and canonical plan (only the noise varies)");
   app.add_option("--out", opt.out, "output directory (default: out/<world>)");
   app.add_option("--emit-device", opt.emit_device, "also write the run as device files: DIR/lidar.uart (LD06) + DIR/wheels.log (candump)");
+  app.add_option("--wheel-clock-ppm", opt.wheel_clock_ppm,
+                 "--emit-device: the wheel board's clock runs this fast against the host's (ppm); the bus adds "
+                 "0.2 ms latency, 0.5 ms mean jitter and 1 % of frames up to 20 ms late")
+      ->check(CLI::Range(-1000.0, 1000.0))->capture_default_str();
+  app.add_flag("--ideal-bus", opt.ideal_bus, "--emit-device: wheel frames arrive at their device time (no latency, jitter or drift)");
   app.add_flag("--odometry-only", opt.odometry_only, "map with dead reckoning only (for comparison)");
   app.add_flag("--front-end-only", opt.front_end_only, "map without the back end (no region graph, no loop closures; for comparison)");
   app.add_option("--load-map", opt.load_map, "start from this saved map (a second session; dpcr-map info FILE shows it)");

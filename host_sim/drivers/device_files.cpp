@@ -66,23 +66,43 @@ void DeviceEmitter::AddOdometry(const OdometrySample& sample) {
   f.left_ticks = static_cast<std::uint16_t>(std::llround(left_m_ * ticks_per_m) & 0xFFFF);
   f.right_ticks = static_cast<std::uint16_t>(std::llround(right_m_ * ticks_per_m) & 0xFFFF);
   f.sequence = ticks_seq_++;
-  f.time_10us = static_cast<std::uint32_t>((sample.stamp_us / kWheelTimeUnitUs) % kUnitsWrap);
+  f.time_10us = static_cast<std::uint32_t>((DeviceTimeUs(sample.stamp_us) / kWheelTimeUnitUs) % kUnitsWrap);
   // The gyro frame before the ticks frame of the same instant, so the odometry sample carries the rate.
   if (sample.has_gyro) AddGyro(sample);
   CandumpRecord r;
-  r.stamp_us = sample.stamp_us;
+  r.stamp_us = ArrivalUs(sample.stamp_us);
   r.interface = config_.can_interface;
   r.frame = EncodeWheelFrame(f);
   can_.push_back(r);
+}
+
+std::int64_t DeviceEmitter::DeviceTimeUs(std::int64_t stamp_us) {
+  if (first_stamp_us_ == INT64_MIN) first_stamp_us_ = stamp_us;
+  if (config_.wheel_clock_ppm == 0.0 && config_.wheel_clock_start_us == 0) return stamp_us;  // an ideal bus
+  // The board's clock starts with the run (at wheel_clock_start_us) and gains ppm on the host's.
+  const double since = static_cast<double>(stamp_us - first_stamp_us_);
+  return config_.wheel_clock_start_us + static_cast<std::int64_t>(std::llround(since * (1.0 + config_.wheel_clock_ppm * 1e-6)));
+}
+
+std::int64_t DeviceEmitter::ArrivalUs(std::int64_t stamp_us) {
+  double late = static_cast<double>(config_.can_latency_us);
+  if (config_.can_jitter_us > 0.0) late += std::exponential_distribution<double>(1.0 / config_.can_jitter_us)(bus_random_);
+  if (config_.can_spike_fraction > 0.0 && std::uniform_real_distribution<double>(0.0, 1.0)(bus_random_) < config_.can_spike_fraction) {
+    late += std::uniform_real_distribution<double>(0.0, config_.can_spike_us)(bus_random_);
+  }
+  std::int64_t arrival = stamp_us + static_cast<std::int64_t>(std::llround(late));
+  if (arrival < last_arrival_us_) arrival = last_arrival_us_;  // a bus delivers in order
+  last_arrival_us_ = arrival;
+  return arrival;
 }
 
 void DeviceEmitter::AddGyro(const OdometrySample& sample) {
   GyroFrame g;
   g.yaw_rate_mrad_s = static_cast<std::int16_t>(std::lround(sample.gyro_yaw_rate * 1000.0f));
   g.sequence = gyro_seq_++;
-  g.time_10us = static_cast<std::uint32_t>((sample.stamp_us / kWheelTimeUnitUs) % kUnitsWrap);
+  g.time_10us = static_cast<std::uint32_t>((DeviceTimeUs(sample.stamp_us) / kWheelTimeUnitUs) % kUnitsWrap);
   CandumpRecord r;
-  r.stamp_us = sample.stamp_us;
+  r.stamp_us = ArrivalUs(sample.stamp_us);
   r.interface = config_.can_interface;
   r.frame = EncodeGyroFrame(g);
   can_.push_back(r);
@@ -142,7 +162,7 @@ DeviceReplay::DeviceReplay(const DeviceFilesConfig& files, const LidarStreamConf
 
 bool DeviceReplay::Open(const std::string& uart_path, const std::string& candump_path, std::string* error) {
   std::vector<UartChunk> chunks;
-  if (!uart_path.empty() && !ReadUartCapture(uart_path, &chunks, error)) return false;
+  if (!uart_path.empty() && !ReadUartCapture(uart_path, &chunks, error, &uart_end_us_)) return false;
   std::vector<CandumpRecord> records;
   if (!candump_path.empty() && !ReadCandumpLog(candump_path, &records, error)) return false;
   uart_.reset(new UartCaptureSource(std::move(chunks)));
@@ -162,7 +182,8 @@ void DeviceReplay::Run() {
     if (!flushed && uart_t == INT64_MAX) {
       // The capture's last revolution (no wrap follows to close it), when the firmware's poll loop
       // notices the end of its UART: after the frames of the next CAN instant, or at once.
-      if (flush_after_us == INT64_MIN) flush_after_us = can_t;
+      // A firmware recording says when its revolution was taken: after every frame received before.
+      if (flush_after_us == INT64_MIN) flush_after_us = uart_end_us_ != INT64_MIN ? uart_end_us_ : can_t;
       if (can_t > flush_after_us || can_t == INT64_MAX) {
         pipeline_->FlushLidar();
         flushed = true;

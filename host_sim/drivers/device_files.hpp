@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,33 @@ struct DeviceFilesConfig {
   // the rate a revolution's beam times give, when it has more than one beam).
   LidarKind lidar = LidarKind::kLd06;
   float xv11_rate_hz = 5.0f;
+  // The wheel board's clock and the bus, as the firmware meets them (hal/device_time_base.hpp):
+  // the frames' device time runs `wheel_clock_ppm` fast against the host's, starting at
+  // `wheel_clock_start_us`; each frame arrives (candump stamp) `can_latency_us` after its device
+  // time was taken, plus an exponential jitter of mean `can_jitter_us`, plus, for a fraction
+  // `can_spike_fraction` of frames, up to `can_spike_us` more (a loaded SoC); frames stay in
+  // order. All zero: an ideal bus (arrival = device time), the default; dpcr-sim --emit-device
+  // models a real one (RealisticBus).
+  double wheel_clock_ppm = 0.0;
+  std::int64_t wheel_clock_start_us = 0;
+  std::int64_t can_latency_us = 0;
+  double can_jitter_us = 0.0;
+  double can_spike_fraction = 0.0;
+  double can_spike_us = 0.0;
+  std::uint32_t bus_seed = 1;
 };
+
+// A wheel board 35 ppm fast with its clock started 5 s before the host's run, 0.2 ms bus latency,
+// 0.5 ms mean jitter and 1 % of frames up to 20 ms late.
+inline void RealisticBus(DeviceFilesConfig* c, std::uint32_t seed, double ppm = 35.0) {
+  c->wheel_clock_ppm = ppm;
+  c->wheel_clock_start_us = 5000000;
+  c->can_latency_us = 200;
+  c->can_jitter_us = 500.0;
+  c->can_spike_fraction = 0.01;
+  c->can_spike_us = 20000.0;
+  c->bus_seed = seed;
+}
 
 // DIR/device.json: the device options a recording was made with (hal/device_options.hpp) and
 // its lidar ("ld06" / "xv11"). Read: fields present override `options` / `lidar`; false with
@@ -46,7 +73,8 @@ bool ReadDeviceDescription(const std::string& path, DeviceOptions* options, std:
 // when present; a sample without wheels (has_wheels false) only its gyro frame.
 class DeviceEmitter {
  public:
-  explicit DeviceEmitter(const DeviceFilesConfig& config = DeviceFilesConfig()) : config_(config) {}
+  explicit DeviceEmitter(const DeviceFilesConfig& config = DeviceFilesConfig())
+      : config_(config), bus_random_(config.bus_seed) {}
   bool Open(const std::string& dir, std::string* error);
   bool AddScan(const DeviceScan& scan);
   void AddOdometry(const OdometrySample& sample);
@@ -54,7 +82,13 @@ class DeviceEmitter {
 
  private:
   void AddGyro(const OdometrySample& sample);
+  // The wheel board's clock at host time `stamp_us`, and a frame's arrival (in order).
+  std::int64_t DeviceTimeUs(std::int64_t stamp_us);
+  std::int64_t ArrivalUs(std::int64_t stamp_us);
   DeviceFilesConfig config_;
+  std::mt19937 bus_random_;
+  std::int64_t last_arrival_us_ = INT64_MIN;
+  std::int64_t first_stamp_us_ = INT64_MIN;
   std::string dir_;
   UartCaptureWriter uart_;
   std::vector<CandumpRecord> can_;
@@ -82,6 +116,7 @@ class DeviceReplay {
   std::unique_ptr<DevicePipeline> pipeline_;
   std::unique_ptr<UartCaptureSource> uart_;
   std::unique_ptr<CandumpSource> can_;
+  std::int64_t uart_end_us_ = INT64_MIN;  // the capture's "# end" stamp, if any
 };
 
 }  // namespace dpcr

@@ -11,6 +11,7 @@ namespace dpcr {
 namespace {
 
 constexpr const char* kMagic = "# dpcr-uart-capture 1";
+constexpr const char* kEndMarker = "# end ";
 constexpr std::size_t kMaxChunk = 4096;
 
 int HexValue(char c) {
@@ -49,7 +50,7 @@ std::string FormatUartCaptureLine(std::int64_t stamp_us, const std::uint8_t* dat
   return line;
 }
 
-bool ReadUartCapture(const std::string& path, std::vector<UartChunk>* out, std::string* error) {
+bool ReadUartCapture(const std::string& path, std::vector<UartChunk>* out, std::string* error, std::int64_t* end_us) {
   std::ifstream in(path);
   if (!in) {
     *error = path + ": cannot open: " + std::strerror(errno);
@@ -64,6 +65,15 @@ bool ReadUartCapture(const std::string& path, std::vector<UartChunk>* out, std::
     if (number == 1 && line != kMagic) {
       *error = path + ":1: not a dpcr UART capture (expected '" + kMagic + "')";
       return false;
+    }
+    if (line.rfind(kEndMarker, 0) == 0 && end_us != nullptr) {
+      UartChunk end;  // "# end STAMP": parsed as a chunk line without bytes
+      if (!ParseUartCaptureLine(line.substr(std::strlen(kEndMarker)) + " 00", &end)) {
+        *error = path + ":" + std::to_string(number) + ": malformed end line";
+        return false;
+      }
+      *end_us = end.stamp_us;
+      continue;
     }
     if (line.empty() || line[0] == '#') continue;
     UartChunk chunk;

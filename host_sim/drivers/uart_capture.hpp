@@ -17,8 +17,11 @@ struct UartChunk {
 };
 
 // Reads a whole capture; false with a message naming the file and line on a bad line
-// (chunks before it are kept in `out`).
-bool ReadUartCapture(const std::string& path, std::vector<UartChunk>* out, std::string* error);
+// (chunks before it are kept in `out`). `end_us`, when given, receives the stamp of an
+// "# end STAMP" line (a recording's end: when the firmware took its last revolution), else is
+// left as it was.
+bool ReadUartCapture(const std::string& path, std::vector<UartChunk>* out, std::string* error,
+                     std::int64_t* end_us = nullptr);
 // Parses one data line ("sec.usec HEX"); false if malformed.
 bool ParseUartCaptureLine(const std::string& line, UartChunk* out);
 std::string FormatUartCaptureLine(std::int64_t stamp_us, const std::uint8_t* data, std::size_t size);

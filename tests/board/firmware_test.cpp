@@ -1,27 +1,23 @@
+// dpcr-firmware on the board's own ports (termios on a pty, SocketCAN, systemd's notify socket)
+// and its configuration file. The loop itself is tested on fake ports: firmware_loop_test.cpp.
 #include <catch2/catch.hpp>
 
-#include <atomic>
-#include <chrono>
-#include <cmath>
-#include <csignal>
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
-#include <memory>
 #include <pty.h>
-#include <sstream>
 #include <string>
 #include <sys/socket.h>
+#include <sys/un.h>
 #include <termios.h>
-#include <thread>
 #include <unistd.h>
 #include <vector>
 
+#include "board/firmware_config_file.hpp"
 #include "board/firmware_loop.hpp"
-#include "board/socketcan_port.hpp"
-#include "core/capacity.hpp"
-#include "core/geometry/pose2.hpp"
-#include "hal/ld06_emitter.hpp"
-#include "hal/wheel_can_protocol.hpp"
+#include "board/systemd_notifier.hpp"
+#include "board/unique_fd.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace {
@@ -33,13 +29,6 @@ std::string ReadLog(std::FILE* log) {
   char buf[512];
   while (std::fgets(buf, sizeof(buf), log) != nullptr) s += buf;
   return s;
-}
-
-std::string Slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
 }
 
 struct Pty {
@@ -59,147 +48,161 @@ struct Pty {
   }
 };
 
-// A stationary robot in a 4 m x 4 m room: one LD06 revolution of 450 beams, clockwise.
-void MakeRoomScan(dpcr::Scan<dpcr::VacuumProfile::kMaxBeams>* scan) {
-  scan->beams.clear();
-  scan->stamp_us = 0;
-  const int n = 450;
-  for (int i = 0; i < n; ++i) {
-    const float deg = 360.0f * static_cast<float>(i) / static_cast<float>(n);
-    dpcr::Beam b;
-    b.angle_rad = dpcr::NormalizeAngle(-deg * dpcr::kPi / 180.0f);
-    b.range_m = 2.0f / std::fmax(std::fabs(std::cos(b.angle_rad)), std::fabs(std::sin(b.angle_rad)));
-    b.offset_us = static_cast<std::int32_t>(100000 * i / n);
-    REQUIRE(scan->beams.push_back(b) == dpcr::Status::kOk);
+// A service manager's notify socket in a temporary directory, named by $NOTIFY_SOCKET (and the
+// watchdog period by $WATCHDOG_USEC) while it exists.
+struct FakeNotifySocket {
+  explicit FakeNotifySocket(const std::string& dir, long watchdog_us) : path(dir + "/notify") {
+    fd.Reset(::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0));
+    sockaddr_un addr{};
+    addr.sun_family = AF_UNIX;
+    REQUIRE(path.size() < sizeof(addr.sun_path));
+    std::snprintf(addr.sun_path, sizeof(addr.sun_path), "%s", path.c_str());
+    REQUIRE(::bind(fd.get(), reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) == 0);
+    ::setenv("NOTIFY_SOCKET", path.c_str(), 1);
+    if (watchdog_us > 0) ::setenv("WATCHDOG_USEC", std::to_string(watchdog_us).c_str(), 1);
   }
+  ~FakeNotifySocket() {
+    ::unsetenv("NOTIFY_SOCKET");
+    ::unsetenv("WATCHDOG_USEC");
+  }
+  std::vector<std::string> Messages() {
+    std::vector<std::string> out;
+    char buf[256];
+    for (;;) {
+      const ssize_t n = ::recv(fd.get(), buf, sizeof(buf), 0);
+      if (n < 0) return out;
+      out.emplace_back(buf, static_cast<std::size_t>(n));
+    }
+  }
+  std::string path;
+  dpcr::board::UniqueFd fd;
+};
+
+dpcr::board::FirmwareConfig BoardConfig() {
+  dpcr::board::FirmwareConfig c;
+  c.wheels.ticks_per_rev = 4096.0f;
+  return c;
 }
 
 }  // namespace
 
-TEST_CASE("firmware: a missing serial device is named with the errno reason, exit 1") {
-  dpcr::board::FirmwareConfig c;
+TEST_CASE("firmware: a missing serial device is named with its errno, exit 1") {
+  dpcr::board::FirmwareConfig c = BoardConfig();
   c.uart_device = "/dev/dpcr-no-such-tty";
+  const dpcr::test::ScopedTempDir map_dir("firmware_no_tty");
+  c.map_dir = map_dir.str();
   std::FILE* log = std::tmpfile();
   REQUIRE(log != nullptr);
   CHECK(dpcr::board::RunFirmware(c, log) == 1);
   const std::string text = ReadLog(log);
+  INFO(text);
   CHECK(text.find("/dev/dpcr-no-such-tty") != std::string::npos);
   CHECK(text.find("No such file or directory") != std::string::npos);
   std::fclose(log);
 }
 
-TEST_CASE("firmware: a missing CAN interface is named, exit 1") {
+TEST_CASE("firmware: no CAN interface -> the lidar alone, said once; systemd hears ready, watchdog kicks, stopping") {
   Pty pty;
-  dpcr::board::FirmwareConfig c;
+  const dpcr::test::ScopedTempDir dir("firmware_no_can");
+  FakeNotifySocket notify(dir.str(), 100000);  // kicks every 50 ms: the socket queues 10 datagrams
+  dpcr::board::FirmwareConfig c = BoardConfig();
   c.uart_device = pty.name;
   c.can_interface = "dpcrcan7";
+  c.map_dir = dir.str();
+  c.lidar_timeout_ms = 300;  // the pty stays silent: the run ends by the lidar timeout
   std::FILE* log = std::tmpfile();
-  CHECK(dpcr::board::RunFirmware(c, log) == 1);
-  const std::string text = ReadLog(log);
-  CHECK(text.find("CAN dpcrcan7") != std::string::npos);
-  std::fclose(log);
-}
-
-TEST_CASE("firmware: a silent lidar is reported as a timeout, exit 2") {
-  Pty pty;
-  int sv[2];
-  REQUIRE(::socketpair(AF_UNIX, SOCK_SEQPACKET, 0, sv) == 0);
-  dpcr::board::FirmwareConfig c;
-  c.uart_device = pty.name;
-  c.can_fd = sv[1];
-  c.lidar_timeout_ms = 300;
-  const dpcr::test::ScopedTempDir map_dir("firmware_timeout");  // the exit path saves a map
-  c.map_dir = map_dir.str();
-  std::FILE* log = std::tmpfile();
-  const auto start = std::chrono::steady_clock::now();
   CHECK(dpcr::board::RunFirmware(c, log) == 2);
-  CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(5));
-  const std::string text = ReadLog(log);
-  CHECK(text.find("lidar timeout") != std::string::npos);
-  CHECK(text.find(pty.name) != std::string::npos);
-  std::fclose(log);
-  ::close(sv[0]);
-  ::close(sv[1]);
-}
-
-TEST_CASE("firmware: pty lidar + socketpair CAN, SIGTERM saves a loadable map") {
-  Pty pty;
-  int sv[2];
-  REQUIRE(::socketpair(AF_UNIX, SOCK_SEQPACKET, 0, sv) == 0);
-  const dpcr::test::ScopedTempDir map_dir("firmware_map");
-  const std::string dir = map_dir.str();
-  dpcr::board::FirmwareConfig c;
-  c.uart_device = pty.name;
-  c.can_fd = sv[1];
-  c.map_dir = dir;
-  c.autosave_s = 0;
-  c.status_period_ms = 200;
-
-  std::atomic<bool> stop{false};
-  std::atomic<int> revolutions{0};
-  std::thread feeder([&] {
-    auto scan = std::make_unique<dpcr::Scan<dpcr::VacuumProfile::kMaxBeams>>();
-    MakeRoomScan(scan.get());
-    std::uint8_t seq = 0;
-    std::uint32_t t10 = 0;
-    while (!stop.load()) {
-      // One revolution: 38 packets over ~100 ms, with wheel frames every ~10 ms.
-      int packet = 0;
-      dpcr::EmitLd06Revolution(*scan, dpcr::LidarAngleMap{}, [&](const dpcr::Ld06EmittedPacket& p) {
-        std::size_t done = 0;
-        while (done < sizeof(p.bytes)) {
-          const ssize_t n = ::write(pty.master, p.bytes + done, sizeof(p.bytes) - done);
-          if (n > 0) done += static_cast<std::size_t>(n);
-        }
-        if (++packet % 4 == 0) {
-          dpcr::WheelTicksFrame w;
-          w.sequence = seq++;
-          w.time_10us = (t10 += 1000);
-          static_cast<void>(dpcr::board::WriteCanFrame(sv[0], dpcr::EncodeWheelFrame(w)));
-          std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        }
-      });
-      ++revolutions;
-      if (revolutions.load() == 25) ::kill(::getpid(), SIGTERM);
-    }
-  });
-  std::FILE* log = std::tmpfile();
-  const int code = dpcr::board::RunFirmware(c, log);
-  stop = true;
-  feeder.join();
   const std::string text = ReadLog(log);
   INFO(text);
-  CHECK(code == 0);
-  CHECK(text.find("signal received") != std::string::npos);
-  CHECK(text.find("scan_rate=") != std::string::npos);
-  CHECK(text.find("map saved") != std::string::npos);
-
-  // map_server-loadable: P5 header, size matches, YAML names the image.
-  const std::string pgm = Slurp(dir + "/map.pgm");
-  REQUIRE(pgm.size() > 20);
-  CHECK(pgm.compare(0, 3, "P5\n") == 0);
-  int w = 0;
-  int h = 0;
-  int maxval = 0;
-  int header = 0;
-  REQUIRE(std::sscanf(pgm.c_str(), "P5\n%d %d\n%d\n%n", &w, &h, &maxval, &header) == 3);
-  CHECK(maxval == 255);
-  REQUIRE(pgm.size() == static_cast<std::size_t>(header) + static_cast<std::size_t>(w * h));
-  // The 4 m room at 5 cm: at least 80 cells across, walls occupied, inside free.
-  CHECK(w >= 78);
-  CHECK(w <= 160);  // bounds are tile-aligned
-  std::size_t occupied = 0;
-  std::size_t free_cells = 0;
-  for (std::size_t i = static_cast<std::size_t>(header); i < pgm.size(); ++i) {
-    occupied += static_cast<unsigned char>(pgm[i]) == 0 ? 1 : 0;
-    free_cells += static_cast<unsigned char>(pgm[i]) == 254 ? 1 : 0;
-  }
-  CHECK(occupied > 200);
-  CHECK(free_cells > 3000);
-  const std::string yaml = Slurp(dir + "/map.yaml");
-  CHECK(yaml.find("image: map.pgm") != std::string::npos);
-  CHECK(yaml.find("resolution: 0.05") != std::string::npos);
+  // "no such CAN interface: ENODEV" on a board, "socket(PF_CAN): EAFNOSUPPORT" on a kernel without CAN.
+  CHECK(text.find("warning: CAN dpcrcan7 unavailable (dpcrcan7: ") != std::string::npos);
+  CHECK(text.find("mapping from the lidar alone") != std::string::npos);
+  CHECK(text.find("running: lidar on " + pty.name) != std::string::npos);
+  CHECK(text.find("lidar timeout") != std::string::npos);
   std::fclose(log);
-  ::close(sv[0]);
-  ::close(sv[1]);
+  const std::vector<std::string> messages = notify.Messages();
+  std::string all;
+  for (const std::string& m : messages) all += "[" + m + "] ";
+  INFO(all);
+  REQUIRE(messages.size() >= 3);
+  CHECK(messages.front().rfind("READY=1", 0) == 0);
+  CHECK(messages.back().rfind("STOPPING=1", 0) == 0);
+  // 300 ms of loop with a 100 ms watchdog: a kick every 50 ms.
+  const auto kicks = std::count(messages.begin(), messages.end(), std::string("WATCHDOG=1"));
+  CHECK(kicks >= 5);
+}
+
+TEST_CASE("systemd notifier: disabled without NOTIFY_SOCKET; abstract and path sockets; WATCHDOG_PID of another process") {
+  ::unsetenv("NOTIFY_SOCKET");
+  CHECK_FALSE(dpcr::board::SystemdNotifier().enabled());
+  const dpcr::test::ScopedTempDir dir("notifier");
+  FakeNotifySocket notify(dir.str(), 2000000);
+  {
+    dpcr::board::SystemdNotifier n;
+    REQUIRE(n.enabled());
+    CHECK(n.watchdog_period_us() == 2000000);
+    n.Ready();
+    n.Alive();
+    n.Stopping();
+    const std::vector<std::string> m = notify.Messages();
+    REQUIRE(m.size() == 3);
+    CHECK(m[0] == "READY=1\nSTATUS=mapping");
+    CHECK(m[1] == "WATCHDOG=1");
+    CHECK(m[2].rfind("STOPPING=1", 0) == 0);
+  }
+  ::setenv("WATCHDOG_PID", "1", 1);  // the watchdog is someone else's
+  CHECK(dpcr::board::SystemdNotifier().watchdog_period_us() == 0);
+  ::unsetenv("WATCHDOG_PID");
+}
+
+TEST_CASE("firmware config file: the robot's parameters, every mistake one line naming the key") {
+  const dpcr::test::ScopedTempDir dir("firmware_config");
+  const auto load = [&](const std::string& json, dpcr::board::FirmwareConfig* c, std::string* error) {
+    const std::string path = dir.str() + "/robot.json";
+    std::ofstream(path) << json;
+    return dpcr::board::LoadFirmwareConfigFile(path, c, error);
+  };
+  dpcr::board::FirmwareConfig c;
+  std::string error;
+  REQUIRE(load(R"({"uart": "/dev/ttyS3", "can": "can1", "lidar": "xv11", "angle_sign": 1, "wheel_radius_m": 0.04,
+                   "track_width_m": 0.25, "ticks_per_rev": 4096, "max_range_m": 6, "laser_offset_m": 0.05,
+                   "heading": "gyro", "profile": "vacuum", "map_dir": "/var/lib/dpcr", "autosave_s": 30,
+                   "status_period_s": 60})",
+               &c, &error));
+  CHECK(c.uart_device == "/dev/ttyS3");
+  CHECK(c.can_interface == "can1");
+  CHECK(c.lidar == dpcr::LidarKind::kXv11);
+  CHECK(c.baud == 115200);
+  CHECK(c.angle_map.angle_sign == 1.0f);
+  CHECK(c.wheels.wheel_radius_m == 0.04f);
+  CHECK(c.wheels.ticks_per_rev == 4096.0f);
+  CHECK(c.laser_offset_m == 0.05f);
+  CHECK(c.gyro_heading);
+  CHECK(c.autosave_s == 30);
+  CHECK(c.status_period_ms == 60000);
+
+  // dpcr-sim's device.json is a valid config (its keys are a subset).
+  dpcr::board::FirmwareConfig d;
+  CHECK(load(R"({"lidar": "ld06", "angle_sign": 1.0, "wheel_radius_m": 0.035, "track_width_m": 0.235,
+                 "ticks_per_rev": 4096.0, "max_range_m": 12.0, "laser_offset_m": 0.0})",
+             &d, &error));
+
+  const auto refused = [&](const std::string& json, const std::string& expect) {
+    dpcr::board::FirmwareConfig x;
+    std::string e;
+    CHECK_FALSE(load(json, &x, &e));
+    INFO(e);
+    CHECK(e.find(expect) != std::string::npos);
+    CHECK(e.find('\n') == std::string::npos);
+  };
+  refused(R"({"wheel_radius_m": 0.035})", "ticks_per_rev: required");
+  refused(R"({"ticks_per_rev": 4096, "tick_per_rev": 1})", "tick_per_rev: unknown key");
+  refused(R"({"ticks_per_rev": "4096"})", "ticks_per_rev: expected a number");
+  refused(R"({"ticks_per_rev": 4096, "profile": "building"})", "profile: \"building\"");
+  refused(R"({"ticks_per_rev": 4096, "lidar": "rplidar"})", "lidar: \"rplidar\" is not ld06 or xv11");
+  refused(R"({"ticks_per_rev": 4096, "wheel_radius_m": 3})", "wheel_radius_m: out of range");
+  refused(R"({"ticks_per_rev": 4096, "angle_sign": 0.5})", "angle_sign: expected 1 or -1");
+  refused(R"({"ticks_per_rev": 4096, "autosave_s": 1.5})", "autosave_s: expected a whole number");
+  refused(R"([1, 2])", "expected a JSON object");
+  refused(R"({"ticks_per_rev": 40)", "not JSON");
 }

@@ -1,11 +1,13 @@
 #include <catch2/catch.hpp>
 
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include "host_sim/drivers/uart_capture.hpp"
+#include "tests/support/temp_dir.hpp"
 
 TEST_CASE("uart capture write and read back, long chunks split") {
   const std::string path = "uart_capture_test.uart";
@@ -56,4 +58,20 @@ TEST_CASE("uart capture rejects a bad line and names it") {
   CHECK_FALSE(dpcr::ReadUartCapture("does-not-exist.uart", &chunks, &error));
   CHECK(error.find("does-not-exist.uart") != std::string::npos);
   std::remove(path.c_str());
+}
+
+TEST_CASE("uart capture: a recording's end line gives its stamp; other comment lines are skipped") {
+  const dpcr::test::ScopedTempDir dir("uart_end");
+  const std::string path = (dir.path() / "lidar.uart").string();
+  std::ofstream(path) << "# dpcr-uart-capture 1\n# device recorded by dpcr-firmware\n1.000100 54\n2.000200 2C\n# end 3.500000\n";
+  std::vector<dpcr::UartChunk> chunks;
+  std::string error;
+  std::int64_t end_us = INT64_MIN;
+  REQUIRE(dpcr::ReadUartCapture(path, &chunks, &error, &end_us));
+  CHECK(chunks.size() == 2);
+  CHECK(end_us == 3500000);
+  std::ofstream(path) << "# dpcr-uart-capture 1\n1.000100 54\n# end soon\n";
+  chunks.clear();
+  CHECK_FALSE(dpcr::ReadUartCapture(path, &chunks, &error, &end_us));
+  CHECK(error.find(":3: malformed end line") != std::string::npos);
 }

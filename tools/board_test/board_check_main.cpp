@@ -107,16 +107,19 @@ int main(int argc, char** argv) {
       p.stamp_us = std::llabs(host[j].stamp_us - t) < 50000 ? host[j].stamp_us : -1;
     }
   }
-  std::map<std::int64_t, dpcr::Pose2> by_stamp;
-  for (const auto& p : guest) by_stamp[p.stamp_us] = p.pose;
+  // Scans that share a stamp (two revolutions completed by one read) are paired in file order.
+  std::map<std::int64_t, std::vector<dpcr::Pose2>> by_stamp;
+  for (auto it = guest.rbegin(); it != guest.rend(); ++it) by_stamp[it->stamp_us].push_back(it->pose);
   long matched = 0;
   double pos_max = 0.0, pos_sum = 0.0, yaw_max = 0.0;
   for (const auto& p : host) {
-    const auto it = by_stamp.find(p.stamp_us);
-    if (it == by_stamp.end()) continue;
+    const auto found = by_stamp.find(p.stamp_us);
+    if (found == by_stamp.end() || found->second.empty()) continue;
+    const dpcr::Pose2 guest_pose = found->second.back();
+    found->second.pop_back();
     ++matched;
-    const double d = std::hypot(static_cast<double>(it->second.x - p.pose.x), static_cast<double>(it->second.y - p.pose.y));
-    const double yaw = std::fabs(WrapAngle(static_cast<double>(it->second.theta - p.pose.theta))) * 180.0 / M_PI;
+    const double d = std::hypot(static_cast<double>(guest_pose.x - p.pose.x), static_cast<double>(guest_pose.y - p.pose.y));
+    const double yaw = std::fabs(WrapAngle(static_cast<double>(guest_pose.theta - p.pose.theta))) * 180.0 / M_PI;
     pos_sum += d;
     pos_max = d > pos_max ? d : pos_max;
     yaw_max = yaw > yaw_max ? yaw : yaw_max;

@@ -2,7 +2,7 @@
 # /init of the emulated board (tools/emulated-board-test): vcan0 up, dpcr-firmware on the
 # pci-serial UART (/dev/ttyS0) and vcan0, DPCR-READY on the console once it runs (the host then
 # starts the lidar bytes), the wheel frames replayed onto vcan0, SIGTERM once both streams have
-# ended, and the results (trajectory, map, recorded streams, logs) as a gzipped tar on the
+# ended, and the results (trajectory, map.dpcr, recorded streams with their device.json, logs) as a gzipped tar on the
 # second serial port (/dev/ttyS1). Kernel command-line words: DPCR_CASE, DPCR_DROP_EVERY and
 # DPCR_DUP_EVERY (wheel frames dropped / sent twice, 0: none).
 /bin/busybox --install -s /bin
@@ -26,8 +26,10 @@ for m in can can-raw can-dev vcan; do
 done
 ip link add dev vcan0 type vcan && ip link set up vcan0 || finish "vcan0 failed"
 
-dpcr-firmware --uart /dev/ttyS0 --can vcan0 --map-dir /out/map --trajectory /out/trajectory.tum \
-  --record /out/rec --angle-sign 1 --ticks-per-rev 4096 --autosave 0 --lidar-timeout-ms 5000 \
+# The robot's parameters: the scenario's device.json (dpcr-sim wrote it: 4096 ticks, angle +1) as
+# the --config file; the board's own on the command line.
+dpcr-firmware --config /scenario/device.json --uart /dev/ttyS0 --can vcan0 --map-dir /out/map \
+  --trajectory /out/trajectory.tum --record /out/rec --autosave 20 --lidar-timeout-ms 5000 --status-period 10 \
   2> /out/firmware.log &
 fw=$!
 n=0
