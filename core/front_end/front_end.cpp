@@ -37,6 +37,8 @@ Status FrontEnd::Init(const MapperConfig& config) {
   anchor_region_ = -1;
   lost_in_region_ = false;
   scans_since_closure_try_ = 0;
+  localiser_.Cancel();
+  relocalising_ = restart_submap_ = may_be_near_ = false;
   return Status::kOk;
 }
 
@@ -91,6 +93,14 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   bool keep_out = false;
   const std::int64_t since_last_us = last_stamp_us_ >= 0 ? stamp_us - last_stamp_us_ : 0;
   last_stamp_us_ = stamp_us;
+  // 0. Lost (wheels lifted, a long rejection streak, an unknown start): the scan goes into no
+  // map; it tracks locally and searches the maps (front_end_relocalise.cpp).
+  if (LostNow()) {
+    RelocaliseScan(projected.hits, predicted);
+    last_motion_ = Between(previous, pose_);
+    FinishScan(since_last_us);
+    return Status::kOk;
+  }
   if (config_.front_end.enable_registration && s_.submap->size() > 0) {
     RebuildSubmapReferenceIfDue();
     const bool uncertain = UncertainPrediction(predicted);
@@ -129,7 +139,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   }
   // 4b. Once into the current regional map (not while the robot cannot place itself in it, nor
   // a scan kept out above).
-  if (lost_in_region_ || keep_out) {
+  if (lost_in_region_ || keep_out || config_.localisation.localise_only) {
     ++counters_.scans_not_inserted;
     // Its pose is still known in the anchor region's frame.
     last_scan_region_ = anchor_region_ >= 0 ? anchor_region_ : regions_.current();
@@ -139,13 +149,17 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   }
   // 5. Back end: at most one queued job.
   StepBackEnd();
+  FinishScan(since_last_us);
+  return Status::kOk;
+}
+
+void FrontEnd::FinishScan(std::int64_t since_last_us) {
   last_world_ = pose();
   UpdateStatus();
   if (status_ == MapperStatus::kLost) {
     ++counters_.lost_scans;
     counters_.lost_us += since_last_us;
   }
-  return Status::kOk;
 }
 
 bool FrontEnd::UncertainPrediction(const Pose2& predicted) const {
@@ -173,14 +187,16 @@ bool FrontEnd::AfterFirstRegistration(bool uncertain, std::int64_t since_last_us
   // Kept out of everything, the submap would never track again: every so many rejections in a
   // row, a fresh submap starts from this scan at the predicted pose (regional maps untouched; the
   // scan stays out of them).
-  if (consecutive_rejections_ % config_.front_end.submap_restart_after_rejections == 0) {
-    const FrontEndConfig& f = config_.front_end;
-    s_.submap->Reset(config_.grid, f.submap_scans, f.submap_miss_range_m);
-    (void)s_.submap->Add(pose_, Span<const Point2>(s_.hits.data(), hits));
-    scans_since_submap_lines_ = static_cast<std::uint32_t>(f.submap_line_period);  // rebuild next scan
-    ++counters_.submap_restarts;
-  }
+  if (consecutive_rejections_ % config_.front_end.submap_restart_after_rejections == 0) RestartSubmap(hits);
   return true;
+}
+
+void FrontEnd::RestartSubmap(std::size_t hits) {
+  const FrontEndConfig& f = config_.front_end;
+  s_.submap->Reset(config_.grid, f.submap_scans, f.submap_miss_range_m);
+  (void)s_.submap->Add(pose_, Span<const Point2>(s_.hits.data(), hits));
+  scans_since_submap_lines_ = static_cast<std::uint32_t>(f.submap_line_period);  // rebuild next scan
+  ++counters_.submap_restarts;
 }
 
 void FrontEnd::RebuildSubmapReferenceIfDue() {
@@ -239,6 +255,10 @@ void FrontEnd::RegisterScan(std::size_t hits, const Pose2& predicted) {
 }
 
 void FrontEnd::EnterRegion(bool first) {
+  if (config_.localisation.localise_only) {
+    EnterFrozenRegion();
+    return;
+  }
   const RegionKey key = tracker_.current();
   const int left = regions_.current();
   switch (regions_.Enter(key, tracker_.Centre(key))) {
@@ -448,7 +468,9 @@ void FrontEnd::StepBackEnd() {
 }
 
 void FrontEnd::UpdateStatus() {
-  if (regions_.pool_full()) {
+  if (relocalising_) {
+    status_ = MapperStatus::kLost;
+  } else if (regions_.pool_full()) {
     status_ = MapperStatus::kPoolFull;
   } else if (consecutive_rejections_ >= config_.front_end.lost_after_rejections) {
     status_ = MapperStatus::kLost;

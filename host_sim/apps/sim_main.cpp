@@ -1,6 +1,7 @@
 // dpcr-sim: runs the world simulator into the mapper and writes map, trajectories and metrics.
 //   dpcr-sim --world apartment|office|hall|FILE [--minutes M] [--seed N] [--out DIR] [--emit-device DIR]
-//            [--load-map FILE [--start-pose X,Y,THETA]] [--save-map FILE] [--region-width S]
+//            [--load-map FILE [--start-pose X,Y,THETA | --map-origin X,Y,THETA] [--localise-only]]
+//            [--save-map FILE] [--region-width S] [--kidnaps N [--kidnap-from MIN]]
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -9,6 +10,8 @@
 
 #include "core/mapper.hpp"
 #include "host_sim/apps/config_error.hpp"
+#include "host_sim/apps/kidnap_report.hpp"
+#include "host_sim/apps/map_truth_check.hpp"
 #include "host_sim/apps/progress.hpp"
 #include "host_sim/apps/scan_times.hpp"
 #include "host_sim/drivers/device_files.hpp"
@@ -33,6 +36,11 @@ struct Options {
   std::string load_map;
   std::string save_map;
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
+  bool start_pose_given = false;  // without it, a loaded map's start pose is searched for
+  std::vector<float> map_origin;  // the loaded map's frame in the simulated world (for the figures)
+  bool localise_only = false;
+  int kidnaps = 0;
+  double kidnap_from_min = 0.0;
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
   std::string scan_times;
   std::string heading = "wheels";  // the prediction's heading: wheels, or gyro (FrontEndConfig::gyro_heading)
@@ -101,6 +109,8 @@ int Run(const Options& opt) {
   sim_config.duration_min = opt.minutes;
   sim_config.vary_plan = !opt.fixed_plan;
   if (opt.lidar == "xv11") sim_config.lidar = dpcr::sim::Xv11LidarConfig();
+  sim_config.kidnaps.count = opt.kidnaps;
+  sim_config.kidnaps.from_min = opt.kidnap_from_min;
   dpcr::sim::Simulation sim(world, sim_config);
 
   dpcr::MapperConfig config;
@@ -109,6 +119,8 @@ int Run(const Options& opt) {
   config.back_end.enable = !opt.front_end_only;
   config.front_end.gyro_heading = opt.heading == "gyro";
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
+  config.localisation.unknown_start = !opt.load_map.empty() && !opt.start_pose_given;
+  config.localisation.localise_only = opt.localise_only;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));
   // A second session: the saved map, the robot at a known pose in its frame (the world's start
   // pose is the saved frame's origin when the map came from a run in the same world).
@@ -123,6 +135,8 @@ int Run(const Options& opt) {
   dpcr::apps::Progress progress("sim " + opt.world);
   dpcr::sim::SimEvent event;
   const double total_us = opt.minutes * 60e6;
+  std::vector<dpcr::apps::Recovery> recoveries;
+  std::vector<bool> lost;  // per scan: the status after it was lost
   while (sim.Step(&event)) {
     if (event.type == dpcr::sim::SimEventType::kOdometry) {
       if (!RobotOdometry(opt, &event.odometry)) continue;
@@ -131,7 +145,10 @@ int Run(const Options& opt) {
       continue;
     }
     if (emitter && !emitter->AddScan(event.scan)) throw std::runtime_error("device emitter rejected a scan");
+    const std::uint32_t fixes = mapper.counters().relocalisations;
     dpcr::output::AddTimedScan(mapper, event.scan, &run);  // a SimScan is the vacuum mapper's scan type
+    if (mapper.counters().relocalisations != fixes) recoveries.push_back({event.scan.stamp_us, mapper.pose(), event.truth.ToPose2()});
+    lost.push_back(mapper.status() == dpcr::MapperStatus::kLost);
     run.ground_truth.push_back({event.scan.stamp_us, event.truth.ToPose2()});
     if ((run.estimate.size() & 63) == 0) progress.Update(static_cast<double>(event.time_us) / total_us);
   }
@@ -142,9 +159,15 @@ int Run(const Options& opt) {
   }
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
-  // The map's frame is the robot's first pose; draw the ground truth in it (start-aligned).
+  // The map's frame is the robot's first pose (or, given, where the loaded map lies in the
+  // world); draw the ground truth in it (start-aligned).
+  dpcr::Pose2 align = dpcr::Pose2::Identity();
+  if (!opt.map_origin.empty()) {
+    align = dpcr::Pose2{opt.map_origin[0], opt.map_origin[1], opt.map_origin[2]}.Inverse();
+  } else if (!run.ground_truth.empty()) {
+    align = run.estimate.front().pose * run.ground_truth.front().pose.Inverse();
+  }
   if (!run.ground_truth.empty()) {
-    const dpcr::Pose2 align = run.estimate.front().pose * run.ground_truth.front().pose.Inverse();
     dpcr::eval::Trajectory gt_in_map = run.ground_truth;
     for (auto& p : gt_in_map) p.pose = align * p.pose;
     run.ground_truth.swap(gt_in_map);
@@ -153,7 +176,29 @@ int Run(const Options& opt) {
   dpcr::output::FinalizeTrajectory(mapper, &run);
   nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
   metrics["input"] = InputMetrics(opt, sim);
-  metrics = dpcr::output::WriteRunOutputs(opt.out, dpcr::output::RenderFused(mapper), run, metrics);
+  const auto& c = mapper.counters();
+  metrics["relocalisation"] = {{"lost_events", c.lost_events}, {"relocalisations", c.relocalisations},
+                               {"failed_rounds", c.relocalisation_failures}, {"lifted_scans", c.lifted_scans}};
+  if (opt.kidnaps > 0) metrics["relocalisation"]["kidnaps"] = dpcr::apps::KidnapMetrics(sim.kidnaps(), recoveries, align, 3.0, 0.3);
+  if (mapper.config().localisation.unknown_start && !run.estimate.empty()) {
+    metrics["relocalisation"]["unknown_start"] = dpcr::apps::UnknownStartMetrics(run.estimate.front().stamp_us, recoveries, align);
+  }
+  if (c.lost_events > 0 && !run.ground_truth.empty()) {
+    // The accuracy of the scans the mapper placed (while lost its pose is a guess, and says so).
+    dpcr::eval::Trajectory placed, truth;
+    for (std::size_t i = 0; i < run.estimate.size() && i < lost.size(); ++i) {
+      if (lost[i]) continue;
+      placed.push_back(run.estimate[i]);
+      truth.push_back(run.ground_truth[i]);
+    }
+    const auto a = dpcr::eval::EvaluateAgainstGroundTruth(placed, truth);
+    metrics["relocalisation"]["accuracy_when_placed"] = {{"loc_err_ave_m", a.loc_err_ave_m}, {"ate_rmse_m", a.ate_rmse_m},
+                                                         {"max_err_m", a.max_err_m}, {"samples", a.samples}};
+  }
+  const dpcr::output::FusedMap fused = dpcr::output::RenderFused(mapper);
+  const dpcr::sim::WorldRayCaster caster(world);
+  metrics["map_check"] = dpcr::apps::MapTruthCheck(fused, align.Inverse(), caster);
+  metrics = dpcr::output::WriteRunOutputs(opt.out, fused, run, metrics);
   if (!opt.save_map.empty()) dpcr::output::SaveMapFile(mapper, opt.save_map);
   dpcr::apps::WriteScanTimes(opt.scan_times, run);
 
@@ -178,8 +223,17 @@ int main(int argc, char** argv) {
   app.add_flag("--odometry-only", opt.odometry_only, "map with dead reckoning only (for comparison)");
   app.add_flag("--front-end-only", opt.front_end_only, "map without the back end (no region graph, no loop closures; for comparison)");
   app.add_option("--load-map", opt.load_map, "start from this saved map (a second session; dpcr-map info FILE shows it)");
-  app.add_option("--start-pose", opt.start_pose, "with --load-map: the robot's start pose in the saved map's frame (x,y,theta)")
-      ->expected(3)->delimiter(',')->capture_default_str();
+  app.add_option("--start-pose", opt.start_pose, "with --load-map: the robot's start pose in the saved map's frame (x,y,theta); "
+                 "without it the start pose is unknown and searched for in the maps")
+      ->expected(3)->delimiter(',');
+  app.add_option("--map-origin", opt.map_origin, "with --load-map: where the saved map's frame lies in the simulated world (x,y,theta: "
+                 "input.start_pose_in_world of the run that made it), to measure against the truth")
+      ->expected(3)->delimiter(',');
+  app.add_flag("--localise-only", opt.localise_only, "with --load-map: maps frozen (nothing inserted, no new region, graph unchanged)");
+  app.add_option("--kidnaps", opt.kidnaps, "carry the robot this many times to a random waypoint of its plan (wheels lifted meanwhile), "
+                 "spread from --kidnap-from to the end; metrics.json relocalisation.kidnaps")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--kidnap-from", opt.kidnap_from_min, "minute of the run from which kidnaps happen")->check(CLI::NonNegativeNumber);
   app.add_option("--save-map", opt.save_map, "save the map at the end (atomically), for --load-map and dpcr-map");
   app.add_option("--region-width", opt.region_width_m, "region width S in metres (default: the configuration's, 4 m)")
       ->check(CLI::PositiveNumber);
@@ -192,6 +246,11 @@ int main(int argc, char** argv) {
   app.add_option("--odometry", opt.odometry, "what the robot has: wheels (+ gyro), gyro (no wheel encoders), none")
       ->check(CLI::IsMember({"wheels", "gyro", "none"}))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  opt.start_pose_given = app.count("--start-pose") > 0;
+  if ((opt.localise_only || !opt.map_origin.empty()) && opt.load_map.empty()) {
+    std::fprintf(stderr, "dpcr-sim: error: --localise-only and --map-origin need --load-map\n");
+    return 2;
+  }
   if (opt.out.empty()) opt.out = "out/" + std::filesystem::path(opt.world).stem().string();
   try {
     if (!opt.save_map.empty()) dpcr::output::PrepareMapFileDir(opt.save_map);
