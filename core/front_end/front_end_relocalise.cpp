@@ -23,6 +23,7 @@ void FrontEnd::StartRelocalisation() {
   consecutive_rejections_ = 0;
   localiser_.Cancel();
   ++counters_.lost_events;
+  status_ = MapperStatus::kLost;
 }
 
 void FrontEnd::RelocaliseScan(std::size_t hits, const Pose2& predicted) {
