@@ -177,8 +177,6 @@ int Run(const Options& opt) {
   nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
   metrics["input"] = InputMetrics(opt, sim);
   const auto& c = mapper.counters();
-  metrics["relocalisation"] = {{"lost_events", c.lost_events}, {"relocalisations", c.relocalisations},
-                               {"failed_rounds", c.relocalisation_failures}, {"lifted_scans", c.lifted_scans}};
   if (opt.kidnaps > 0) metrics["relocalisation"]["kidnaps"] = dpcr::apps::KidnapMetrics(sim.kidnaps(), recoveries, align, 3.0, 0.3);
   if (mapper.config().localisation.unknown_start && !run.estimate.empty()) {
     metrics["relocalisation"]["unknown_start"] = dpcr::apps::UnknownStartMetrics(run.estimate.front().stamp_us, recoveries, align);
