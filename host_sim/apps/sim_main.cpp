@@ -179,7 +179,7 @@ int Run(const Options& opt) {
   const auto& c = mapper.counters();
   if (opt.kidnaps > 0) metrics["relocalisation"]["kidnaps"] = dpcr::apps::KidnapMetrics(sim.kidnaps(), recoveries, align, 3.0, 0.3);
   if (mapper.config().localisation.unknown_start && !run.estimate.empty()) {
-    metrics["relocalisation"]["unknown_start"] = dpcr::apps::UnknownStartMetrics(run.estimate.front().stamp_us, recoveries, align);
+    metrics["relocalisation"]["start_fix"] = dpcr::apps::UnknownStartMetrics(run.estimate.front().stamp_us, recoveries, align);
   }
   if (c.lost_events > 0 && !run.ground_truth.empty()) {
     // The accuracy of the scans the mapper placed (while lost its pose is a guess, and says so).
