@@ -9,6 +9,7 @@ constexpr std::uint64_t kLidarStream = 0x9E3779B97F4A7C15ull;
 constexpr std::uint64_t kOdometryStream = 0xC2B2AE3D27D4EB4Full;
 constexpr std::uint64_t kPlanStream = 0x165667B19E3779F9ull;
 constexpr std::uint64_t kKidnapStream = 0x27D4EB2F165667C5ull;
+constexpr std::uint64_t kPeopleStream = 0x85EBCA77C2B2AE63ull;
 
 // A start pose drawn from the seed: a random waypoint of the canonical plan (so reachable from
 // everywhere the plan goes, never inside a closed cabinet), facing anywhere.
@@ -62,6 +63,7 @@ Simulation::Simulation(const World& world, const SimConfig& config)
   pending_scan_.type = SimEventType::kScan;
   pose_ = follower_->pose();
   ScheduleKidnaps();
+  people_ = People(config.people, plan_.waypoints, config.seed ^ kPeopleStream, static_cast<double>(end_us_) * 1e-6);
 }
 
 void Simulation::ScheduleKidnaps() {
@@ -162,6 +164,11 @@ bool Simulation::Step(SimEvent* out) {
     Beam beam;
     beam.angle_rad = NormalizeAngle(static_cast<float>(angle));
     beam.range_m = SimulateBeam(caster_, lidar, sensor, angle, &lidar_rng_);
+    if (people_.size() > 0) {
+      // A person in front of the wall: the beam returns from their legs.
+      const double d = people_.Cast(Vec2{sensor.x, sensor.y}, sensor.theta + angle, static_cast<double>(beam_us) * 1e-6, lidar.max_range_m);
+      if (d >= lidar.min_range_m && (beam.range_m <= 0.0f || d < static_cast<double>(beam.range_m))) beam.range_m = static_cast<float>(d);
+    }
     if (lidar.invalid_probability > 0.0 || lidar.junk_probability > 0.0 || lidar.spin_up_valid_probability < 1.0) {
       beam.range_m = DegradeBeam(beam.range_m, lidar, next_beam_ <= n, &lidar_rng_);
     }

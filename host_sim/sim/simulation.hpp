@@ -13,6 +13,7 @@
 #include "core/geometry/scan.hpp"
 #include "host_sim/sim/coverage_planner.hpp"
 #include "host_sim/sim/motion.hpp"
+#include "host_sim/sim/people.hpp"
 #include "host_sim/sim/sensors.hpp"
 
 namespace dpcr::sim {
@@ -47,6 +48,7 @@ struct SimConfig {
   LidarConfig lidar;
   OdometryConfig odometry;
   KidnapConfig kidnaps;
+  PeopleConfig people;  // people walking through the home, seen by the lidar
 };
 
 using SimScan = Scan<VacuumProfile::kMaxBeams>;
@@ -108,6 +110,7 @@ class Simulation {
   bool lifted_ = false;
   double carried_s_ = 0.0;  // time spent carried so far (the plan's clock stood still)
   Pose2d pose_;             // the robot's true pose now
+  People people_;
 
   SimConfig config_;
   World world_;  // a copy: the caster points into it, so temporaries are safe to pass
