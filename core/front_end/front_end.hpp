@@ -128,7 +128,8 @@ class FrontEnd {
   // (local tracking against a fresh submap, one bounded step of the global search, nothing
   // inserted anywhere); resuming at the pose found.
   bool LostNow();
-  void StartRelocalisation();
+  // `may_be_near`: lost without a lift, the robot may be where it believes (front_end_relocalise.cpp).
+  void StartRelocalisation(bool may_be_near);
   void RelocaliseScan(std::size_t hits, const Pose2& predicted);
   void StepRelocalisation(std::size_t hits);
   void ResumeAt(const GlobalFix& fix);

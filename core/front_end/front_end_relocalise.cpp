@@ -10,15 +10,15 @@ bool FrontEnd::LostNow() {
   if (!config_.localisation.relocalise || !config_.front_end.enable_registration || regions_.size() == 0) return false;
   // Carried (wheels lifted), or the registrations have failed for a while: the pose is unknown.
   const bool lifted = !odometry_.empty() && odometry_.newest().lifted;
-  if (lifted || consecutive_rejections_ >= config_.front_end.lost_after_rejections) StartRelocalisation();
+  // A streak without a lift may be a robot that only lost track nearby: the second registration
+  // may still find it where it thinks it is (as before the global search existed).
+  if (lifted || consecutive_rejections_ >= config_.front_end.lost_after_rejections) StartRelocalisation(!lifted);
   return relocalising_;
 }
 
-void FrontEnd::StartRelocalisation() {
+void FrontEnd::StartRelocalisation(bool may_be_near) {
   relocalising_ = true;
-  // A streak without a lift may be a robot that only lost track nearby: the second registration
-  // may still find it where it thinks it is (as before the global search existed).
-  may_be_near_ = odometry_.empty() || !odometry_.newest().lifted;
+  may_be_near_ = may_be_near;
   restart_submap_ = true;  // what the submap holds may be of another place
   consecutive_rejections_ = 0;
   localiser_.Cancel();

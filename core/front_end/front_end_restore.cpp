@@ -19,7 +19,7 @@ void FrontEnd::RestoreStart(Point2 region_origin, const Pose2& start) {
   have_scan_ = true;
   if (config_.localisation.unknown_start && config_.localisation.relocalise && config_.front_end.enable_registration) {
     // Where the robot is will be searched for (front_end_relocalise.cpp): no region yet.
-    StartRelocalisation();
+    StartRelocalisation(false);  // no pose to fall back on: searched until found
     return;
   }
   // The map the robot's pose is known in until it enters one: the nearest saved one.

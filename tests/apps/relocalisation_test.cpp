@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <random>
 #include <vector>
 
 #include "core/mapper.hpp"
@@ -210,4 +211,38 @@ TEST_CASE("Localise-only: the maps and the graph come out exactly as they went i
   REQUIRE(placed > 600);
   INFO("mean error while placed " << sum_m / placed << " m over " << placed << " scans");
   CHECK(sum_m / placed < 0.15);
+}
+
+TEST_CASE("Started at an unknown pose that matches nothing: stays lost, changes nothing, never guesses") {
+  const dpcr::sim::SimConfig sim_config = SimConfigFor(1, 1.0);
+  dpcr::MapperConfig config = MapperConfigFor(sim_config);
+  config.localisation.unknown_start = true;
+  auto m = Loaded(config);
+  const std::vector<std::int16_t> before = Render(*m);
+  // A place that is nowhere in the apartment: a round room (so the scans track each other and
+  // search rounds run to their end), with still wheels.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> range(1.19f, 1.21f);
+  for (int s = 0; s < 300; ++s) {
+    const std::int64_t stamp = static_cast<std::int64_t>(s) * 100000 + 100000;
+    for (int k = 0; k < 10; ++k) {
+      dpcr::OdometrySample o;
+      o.stamp_us = stamp - 100000 + k * 10000;
+      m->AddOdometry(o);
+    }
+    M::ScanType scan;
+    scan.stamp_us = stamp;
+    for (int b = 0; b < 450; ++b) {
+      dpcr::Beam beam;
+      beam.angle_rad = -dpcr::kPi + 2.0f * dpcr::kPi * static_cast<float>(b) / 450.0f;
+      beam.range_m = range(rng);
+      (void)scan.beams.push_back(beam);
+    }
+    (void)m->AddScan(scan);
+    REQUIRE(m->status() == dpcr::MapperStatus::kLost);
+  }
+  CHECK(m->counters().relocalisations == 0);
+  INFO("failed rounds " << m->counters().relocalisation_failures);
+  CHECK(m->counters().relocalisation_failures >= 3);  // rounds ran and found nothing sure
+  CHECK(Render(*m) == before);
 }
