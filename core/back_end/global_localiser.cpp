@@ -11,9 +11,9 @@ bool Separated(const Pose2& a, const Pose2& b, const CorrelativeSearchConfig& se
          std::fabs(NormalizeAngle(a.theta - b.theta)) >= search.peak_separation_rad;
 }
 
-// Headings per coarse search: each search gives one candidate, so a map is cut into a few
-// slices (about 1.5 rad each) and its wrong headings can compete with its right one.
-constexpr int kSliceAngles = 22;
+// Headings per coarse search: each search gives one candidate, so a map is cut into slices
+// (about pi each at 0.07 rad: two per map) and its wrong headings can compete with its right one.
+constexpr int kSliceAngles = 45;
 
 int SlicesPerMap(const LocalisationConfig& c) {
   return static_cast<int>(std::ceil(2.0f * kPi / (static_cast<float>(kSliceAngles) * c.coarse_angle_step_rad)));
@@ -42,14 +42,25 @@ void GlobalLocaliser::Begin(const BackEndStorage& s, Span<const Point2> hits, co
   const std::size_t room = s.cloud.size() > kCandidateEntries ? s.cloud.size() - kCandidateEntries : 0;
   const std::size_t capacity = static_cast<std::size_t>(config.cloud_points) < room ? static_cast<std::size_t>(config.cloud_points) : room;
   std::size_t n = 0;
-  if (capacity > 0) {
-    const std::size_t stride = hits.empty() ? 1 : (hits.size() + capacity - 1) / capacity;
-    for (std::size_t i = 0; i < hits.size() && n < capacity; i += stride) s.cloud[n++] = hits[i];
+  if (capacity > 0 && !hits.empty()) {
+    // The hits thinned evenly to at most `capacity`, stored interleaved: every k-th first, so that
+    // the cloud's first CoarseSize() points are an even thinning too (the coarse search's).
+    const std::size_t stride = (hits.size() + capacity - 1) / capacity;
+    const std::size_t count = (hits.size() + stride - 1) / stride;
+    const std::size_t k = (count + kCoarsePoints - 1) / kCoarsePoints;
+    for (std::size_t phase = 0; phase < k; ++phase) {
+      for (std::size_t j = phase; j < count; j += k) s.cloud[n++] = hits[j * stride];
+    }
   }
   cloud_size_ = static_cast<std::uint16_t>(n);
   grid_map_ = -1;
   cursor_ = slice_ = candidates_ = 0;
   phase_ = kCoarse;
+}
+
+Span<const Point2> GlobalLocaliser::CoarseCloud(const BackEndStorage& s) const {
+  const std::size_t k = (cloud_size_ + kCoarsePoints - 1) / kCoarsePoints;
+  return Span<const Point2>(s.cloud.data(), k == 0 ? 0 : (cloud_size_ + k - 1) / k);
 }
 
 void GlobalLocaliser::EnsureGrid(const BackEndStorage& s, const RegionalMap& map, int index, int coarsen,
@@ -87,6 +98,9 @@ void GlobalLocaliser::CoarseStep(const BackEndStorage& s, Span<const RegionalMap
                                  std::int16_t threshold, const LocalisationConfig& config, const BackEndConfig& back_end) {
   CorrelativeSearchConfig search = back_end.search;
   search.min_angle_step_rad = search.max_angle_step_rad = config.coarse_angle_step_rad;
+  // Only each slice's best pose is kept (the fine phase judges ambiguity): prune every block
+  // that cannot beat it, not the near-best ones the loop-closure search keeps.
+  search.max_second_ratio = 1.0f;
   const float half_slice = 0.5f * static_cast<float>(kSliceAngles) * config.coarse_angle_step_rad;
   const float window_m = 0.5f * region_width_m + config.window_margin_m;
   // Up to angles_per_step headings: whole slices, map after map; maps too young to hold a room
@@ -107,7 +121,8 @@ void GlobalLocaliser::CoarseStep(const BackEndStorage& s, Span<const RegionalMap
     // The slice's headings around its centre; its translations over the map's region square and
     // margin (the anchor is the square's centre).
     const float centre = -kPi + (2.0f * static_cast<float>(slice_) + 1.0f) * half_slice;
-    const CorrelativeSearchResult r = CorrelativeSearch(*s.match_grid, Cloud(s), Pose2{0.0f, 0.0f, NormalizeAngle(centre)},
+    const CorrelativeSearchResult r = CorrelativeSearch(*s.match_grid, CoarseCloud(s),
+                                                        Pose2{0.0f, 0.0f, NormalizeAngle(centre)},
                                                         window_m, half_slice, search, s.rotated);
     if (r.verdict != Status::kNotEnoughData) {
       Candidate c;

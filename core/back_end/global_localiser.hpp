@@ -43,6 +43,9 @@ class GlobalLocaliser {
   static constexpr int kCandidates = 6;
   // Back-end cloud entries they take (three points each), at its end.
   static constexpr std::size_t kCandidateEntries = 3 * kCandidates;
+  // Points of the frozen cloud the coarse search scores (an even thinning of it): its cost is
+  // proportional, and the fine search and PLICP use the whole cloud.
+  static constexpr std::size_t kCoarsePoints = 32;
 
   // Storage (BackEndStorage, passed to each call, not kept: RAM): the match grid and the
   // regional reference whose table it borrows, the cloud buffer (the frozen cloud, the
@@ -78,6 +81,8 @@ class GlobalLocaliser {
   Status Verify(const BackEndStorage& s, Span<const RegionalMap> maps, const ReferenceConfig& reference,
                 const LocalisationConfig& config, const BackEndConfig& back_end, GlobalFix* fix);
   Span<const Point2> Cloud(const BackEndStorage& s) const { return Span<const Point2>(s.cloud.data(), cloud_size_); }
+  // Its first points, an even thinning to at most kCoarsePoints (Begin stores it interleaved).
+  Span<const Point2> CoarseCloud(const BackEndStorage& s) const;
   // Candidate i in the cloud buffer's last entries: (x, y), (theta, coarse), (fine, map).
   static Candidate Load(const BackEndStorage& s, int i);
   static void Store(const BackEndStorage& s, int i, const Candidate& c);
