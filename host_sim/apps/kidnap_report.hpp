@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/geometry/pose2.hpp"
+#include "host_sim/eval/accuracy.hpp"
 #include "host_sim/sim/simulation.hpp"
 
 namespace dpcr::apps {
@@ -92,6 +93,26 @@ inline nlohmann::json UnknownStartMetrics(std::int64_t start_us, const std::vect
   const FixError err = ErrorOf(r, align);
   return {{"recovered", true}, {"time_to_fix_s", static_cast<double>(r.stamp_us - start_us) * 1e-6},
           {"error_m", err.position_m}, {"error_deg", err.heading_deg}};
+}
+
+// The accuracy of the scans the mapper placed (not `lost`; while lost its pose is a guess, and
+// says so), against the truth already in the map's frame. LocErr_ave is start-aligned: here at the
+// first placed scan, whose fix error it then carries along; the mean error in the map's own frame
+// (known: a fresh session, or dpcr-sim --map-origin) is the fairer figure of a loaded session.
+inline nlohmann::json PlacedAccuracy(const dpcr::eval::Trajectory& estimate, const dpcr::eval::Trajectory& truth_in_map,
+                                     const std::vector<bool>& lost) {
+  dpcr::eval::Trajectory placed, truth;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < estimate.size() && i < truth_in_map.size() && i < lost.size(); ++i) {
+    if (lost[i]) continue;
+    placed.push_back(estimate[i]);
+    truth.push_back(truth_in_map[i]);
+    sum += std::hypot(static_cast<double>(estimate[i].pose.x - truth_in_map[i].pose.x),
+                      static_cast<double>(estimate[i].pose.y - truth_in_map[i].pose.y));
+  }
+  const auto a = dpcr::eval::EvaluateAgainstGroundTruth(placed, truth);
+  return {{"loc_err_ave_m", a.loc_err_ave_m}, {"ate_rmse_m", a.ate_rmse_m}, {"max_err_m", a.max_err_m}, {"samples", a.samples},
+          {"mean_err_in_map_frame_m", placed.empty() ? 0.0 : sum / static_cast<double>(placed.size())}};
 }
 
 }  // namespace dpcr::apps

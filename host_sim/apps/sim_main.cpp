@@ -101,19 +101,46 @@ nlohmann::json InputMetrics(const Options& opt, const dpcr::sim::Simulation& sim
           {"slip_events", sim.slip_events()}, {"people", opt.people}, {"kidnaps", opt.kidnaps}, {"coverage_tours", sim.tours_completed()}};
 }
 
+// What to simulate: the options' seed, length, lidar, kidnaps and people.
+dpcr::sim::SimConfig SimulationConfig(const Options& opt) {
+  dpcr::sim::SimConfig c;
+  c.seed = opt.seed;
+  c.duration_min = opt.minutes;
+  c.vary_plan = !opt.fixed_plan;
+  if (opt.lidar == "xv11") c.lidar = dpcr::sim::Xv11LidarConfig();
+  c.kidnaps.count = opt.kidnaps;
+  c.kidnaps.from_min = opt.kidnap_from_min;
+  c.people.count = opt.people;
+  return c;
+}
+
+// The ground truth's frame to the map's: the robot's first pose is the map's origin (or, given,
+// where the loaded map lies in the world).
+dpcr::Pose2 WorldToMap(const Options& opt, const dpcr::output::RunRecord& run) {
+  if (!opt.map_origin.empty()) return dpcr::Pose2{opt.map_origin[0], opt.map_origin[1], opt.map_origin[2]}.Inverse();
+  if (run.ground_truth.empty()) return dpcr::Pose2::Identity();
+  return run.estimate.front().pose * run.ground_truth.front().pose.Inverse();
+}
+
+// metrics.json relocalisation: kidnaps, the start fix, the accuracy of the scans placed.
+template <class MapperType>
+void AddRelocalisationFigures(const Options& opt, const MapperType& mapper, const dpcr::sim::Simulation& sim,
+                              const dpcr::output::RunRecord& run, const std::vector<dpcr::apps::Recovery>& recoveries,
+                              const std::vector<bool>& lost, const dpcr::Pose2& align, nlohmann::json* metrics) {
+  nlohmann::json& r = (*metrics)["relocalisation"];
+  if (opt.kidnaps > 0) r["kidnaps"] = dpcr::apps::KidnapMetrics(sim.kidnaps(), recoveries, align, 3.0, 0.3);
+  if (mapper.config().localisation.unknown_start && !run.estimate.empty()) {
+    r["start_fix"] = dpcr::apps::UnknownStartMetrics(run.estimate.front().stamp_us, recoveries, align);
+  }
+  if (!run.ground_truth.empty()) r["accuracy_when_placed"] = dpcr::apps::PlacedAccuracy(run.estimate, run.ground_truth, lost);
+}
+
 int Run(const Options& opt) {
   using MapperType = dpcr::Mapper<dpcr::VacuumProfile>;
   static MapperType mapper;  // ~2 MiB: static storage, as on the robot
 
   const dpcr::sim::World world = dpcr::sim::LoadWorld(opt.world);
-  dpcr::sim::SimConfig sim_config;
-  sim_config.seed = opt.seed;
-  sim_config.duration_min = opt.minutes;
-  sim_config.vary_plan = !opt.fixed_plan;
-  if (opt.lidar == "xv11") sim_config.lidar = dpcr::sim::Xv11LidarConfig();
-  sim_config.kidnaps.count = opt.kidnaps;
-  sim_config.kidnaps.from_min = opt.kidnap_from_min;
-  sim_config.people.count = opt.people;
+  const dpcr::sim::SimConfig sim_config = SimulationConfig(opt);
   dpcr::sim::Simulation sim(world, sim_config);
 
   dpcr::MapperConfig config;
@@ -162,14 +189,7 @@ int Run(const Options& opt) {
   }
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
-  // The map's frame is the robot's first pose (or, given, where the loaded map lies in the
-  // world); draw the ground truth in it (start-aligned).
-  dpcr::Pose2 align = dpcr::Pose2::Identity();
-  if (!opt.map_origin.empty()) {
-    align = dpcr::Pose2{opt.map_origin[0], opt.map_origin[1], opt.map_origin[2]}.Inverse();
-  } else if (!run.ground_truth.empty()) {
-    align = run.estimate.front().pose * run.ground_truth.front().pose.Inverse();
-  }
+  const dpcr::Pose2 align = WorldToMap(opt, run);
   if (!run.ground_truth.empty()) {
     dpcr::eval::Trajectory gt_in_map = run.ground_truth;
     for (auto& p : gt_in_map) p.pose = align * p.pose;
@@ -179,30 +199,7 @@ int Run(const Options& opt) {
   dpcr::output::FinalizeTrajectory(mapper, &run);
   nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
   metrics["input"] = InputMetrics(opt, sim);
-  if (opt.kidnaps > 0) metrics["relocalisation"]["kidnaps"] = dpcr::apps::KidnapMetrics(sim.kidnaps(), recoveries, align, 3.0, 0.3);
-  if (mapper.config().localisation.unknown_start && !run.estimate.empty()) {
-    metrics["relocalisation"]["start_fix"] = dpcr::apps::UnknownStartMetrics(run.estimate.front().stamp_us, recoveries, align);
-  }
-  if (!run.ground_truth.empty()) {
-    // The accuracy of the scans the mapper placed (while lost its pose is a guess, and says so).
-    dpcr::eval::Trajectory placed, truth;
-    for (std::size_t i = 0; i < run.estimate.size() && i < lost.size(); ++i) {
-      if (lost[i]) continue;
-      placed.push_back(run.estimate[i]);
-      truth.push_back(run.ground_truth[i]);
-    }
-    const auto a = dpcr::eval::EvaluateAgainstGroundTruth(placed, truth);
-    // LocErr_ave is start-aligned: here at the first placed scan, whose fix error it then carries
-    // along; the mean error against the truth in the map's own frame (known: a fresh session, or
-    // --map-origin) is the fairer figure of a session in a loaded map.
-    double sum = 0.0;
-    for (std::size_t i = 0; i < placed.size(); ++i) {
-      sum += std::hypot(static_cast<double>(placed[i].pose.x - truth[i].pose.x), static_cast<double>(placed[i].pose.y - truth[i].pose.y));
-    }
-    metrics["relocalisation"]["accuracy_when_placed"] = {{"loc_err_ave_m", a.loc_err_ave_m}, {"ate_rmse_m", a.ate_rmse_m},
-                                                         {"max_err_m", a.max_err_m}, {"samples", a.samples},
-                                                         {"mean_err_in_map_frame_m", placed.empty() ? 0.0 : sum / static_cast<double>(placed.size())}};
-  }
+  AddRelocalisationFigures(opt, mapper, sim, run, recoveries, lost, align, &metrics);
   const dpcr::output::FusedMap fused = dpcr::output::RenderFused(mapper);
   const dpcr::sim::WorldRayCaster caster(world);
   metrics["map_check"] = dpcr::apps::MapTruthCheck(fused, align.Inverse(), caster);
