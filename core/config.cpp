@@ -142,6 +142,12 @@ bool BackEndOk(const BackEndConfig& b) {
   return matching && information && loops;
 }
 
+bool LocalisationOk(const LocalisationConfig& c, const BackEndConfig& b) {
+  return In(c.angles_per_step, 1, 2000) && In(c.coarsen, 2, 16) && AboveUpTo(c.coarse_angle_step_rad, 0.0f, kPi / 4) &&
+         In(c.window_margin_m, 0.0f, kMaxDistanceM) && In(c.cloud_points, 10, b.search_points) &&
+         AboveUpTo(c.max_second_ratio, 0.0f, 1.0f) && In(c.min_inlier_ratio, 0.0f, 1.0f);
+}
+
 // What the profile's storage holds.
 bool FitsStorage(const MapperConfig& c, const ConfigLimits& l) {
   const FrontEndConfig& f = c.front_end;
@@ -157,6 +163,7 @@ bool FitsStorage(const MapperConfig& c, const ConfigLimits& l) {
 Status Validate(const MapperConfig& c, const ConfigLimits& limits) {
   // The grid first: the others' checks divide by its resolution and compare with its deltas.
   const bool ok = GridOk(c.grid) && LidarOk(c.lidar) && FrontEndOk(c.front_end, c.grid) && BackEndOk(c.back_end) &&
+                  LocalisationOk(c.localisation, c.back_end) &&
                   MissRangeOk(c.front_end.region_miss_range_m, c.grid) && FitsStorage(c, limits);
   return ok ? Status::kOk : Status::kInvalidArgument;
 }

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "core/back_end/back_end_config.hpp"
+#include "core/back_end/localisation_config.hpp"
 #include "core/registration/plicp.hpp"
 #include "core/geometry/pose2.hpp"
 #include "core/registration/registration_reference.hpp"
@@ -144,6 +145,7 @@ struct MapperConfig {
   LidarConfig lidar;
   FrontEndConfig front_end;
   BackEndConfig back_end;
+  LocalisationConfig localisation;
 };
 
 // What a profile's storage holds (Mapper<Profile>::Init passes its own; the defaults bound nothing).

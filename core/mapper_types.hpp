@@ -47,10 +47,18 @@ struct MapperCounters {
   std::uint32_t streak_scans = 0;
   std::int64_t streak_us = 0;
   std::uint32_t longest_streak_scans = 0;
+  // Relocalisation (core/back_end/global_localiser.hpp; each counter sits where the layout had
+  // padding): times the robot got lost (a rejection streak, the wheels lifted, an unknown start),
+  // recoveries (placed in the maps again), global search rounds that ended without a verified
+  // pose, scans taken with the wheels lifted (kept out of every map).
+  std::uint32_t lost_events = 0;
   std::int64_t longest_streak_us = 0;
   // Scans after which the status was kLost, and the time they covered.
   std::uint32_t lost_scans = 0;
+  std::uint32_t relocalisations = 0;
   std::int64_t lost_us = 0;
+  std::uint32_t relocalisation_failures = 0;
+  std::uint32_t lifted_scans = 0;
 };
 
 }  // namespace dpcr

@@ -129,6 +129,9 @@ void ForEachField(M& m, dpcr::MapperConfig& c) {
   Plicp(m, b.closure_registration);
   m(b.max_edge_chi2), m(b.optimizer.max_iterations), m(b.optimizer.min_step_m), m(b.optimizer.min_step_rad),
       m(b.optimizer.kernel_phi), m(b.optimizer.damping);
+  dpcr::LocalisationConfig& l = c.localisation;
+  m(l.relocalise), m(l.unknown_start), m(l.localise_only), m(l.coarsen), m(l.coarse_angle_step_rad), m(l.angles_per_step),
+      m(l.window_margin_m), m(l.cloud_points), m(l.max_second_ratio), m(l.min_inlier_ratio);
 }
 
 }  // namespace

@@ -40,6 +40,8 @@ Status FrontEnd::Init(const MapperConfig& config) {
   anchor_region_ = -1;
   lost_in_region_ = false;
   scans_since_closure_try_ = 0;
+  localiser_.Cancel();
+  relocalising_ = restart_submap_ = may_be_near_ = false;
   return Status::kOk;
 }
 
@@ -109,6 +111,15 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   counters_.beams_invalid += static_cast<std::uint32_t>(projected.invalid);
   counters_.beams_isolated += static_cast<std::uint32_t>(projected.isolated);
   if (SkipScan(projected, predicted)) return Status::kNotEnoughData;
+  // 0. Lost (wheels lifted, a long rejection streak, an unknown start): the scan goes into no
+  // map; it tracks locally and searches the maps (front_end_relocalise.cpp).
+  if (LostNow()) {
+    RelocaliseScan(beams, motion, since_last_us, &projected, predicted);
+    last_motion_ = Between(previous, pose_);
+    last_motion_us_ = static_cast<std::int32_t>(since_last_us);
+    FinishScan(since_last_us);
+    return Status::kOk;
+  }
   // 2. First registration against the submap (not for the very first scan: nothing to match).
   bool keep_out = false;
   if (config_.front_end.enable_registration && s_.submap->size() > 0) {
@@ -153,8 +164,8 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
     }
   }
   // 4b. Once into the current regional map, or the anchor map while the robot cannot place
-  // itself in the current one; not a scan kept out above.
-  if (keep_out) {
+  // itself in the current one; not a scan kept out above, nor in localise-only mode.
+  if (keep_out || config_.localisation.localise_only) {
     ++counters_.scans_not_inserted;
     // Its pose is still known in the anchor region's frame.
     last_scan_region_ = anchor_region_ >= 0 ? anchor_region_ : regions_.current();
@@ -167,13 +178,17 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   }
   // 5. Back end: at most one queued job.
   StepBackEnd();
+  FinishScan(since_last_us);
+  return Status::kOk;
+}
+
+void FrontEnd::FinishScan(std::int64_t since_last_us) {
   last_world_ = pose();
   UpdateStatus();
   if (status_ == MapperStatus::kLost) {
     ++counters_.lost_scans;
     counters_.lost_us += since_last_us;
   }
-  return Status::kOk;
 }
 
 bool FrontEnd::KeepOutBent(std::size_t hits) {
@@ -240,12 +255,17 @@ bool FrontEnd::AfterFirstRegistration(bool uncertain, std::int64_t since_last_us
   if (consecutive_rejections_ % f.submap_restart_after_rejections == 0) restart_pending_ = true;
   if (restart_pending_ && hits >= static_cast<std::size_t>(f.min_start_hits)) {
     restart_pending_ = false;
-    s_.submap->Reset(config_.grid, f.submap_scans, f.submap_miss_range_m);
-    (void)s_.submap->Add(pose_, Span<const Point2>(s_.hits.data(), hits));
-    scans_since_submap_lines_ = static_cast<std::uint32_t>(f.submap_line_period);  // rebuild next scan
-    ++counters_.submap_restarts;
+    RestartSubmap(hits);
   }
   return true;
+}
+
+void FrontEnd::RestartSubmap(std::size_t hits) {
+  const FrontEndConfig& f = config_.front_end;
+  s_.submap->Reset(config_.grid, f.submap_scans, f.submap_miss_range_m);
+  (void)s_.submap->Add(pose_, Span<const Point2>(s_.hits.data(), hits));
+  scans_since_submap_lines_ = static_cast<std::uint32_t>(f.submap_line_period);  // rebuild next scan
+  ++counters_.submap_restarts;
 }
 
 void FrontEnd::RebuildSubmapReferenceIfDue() {
@@ -359,6 +379,10 @@ RegistrationResult FrontEnd::TrackBent(RegistrationResult r, const Pose2& from) 
 void FrontEnd::EnterRegion(bool first) {
   // A search for the map the robot just left has lost its point.
   if (back_end_.searching()) back_end_.CancelLoopClosure();
+  if (config_.localisation.localise_only) {
+    EnterFrozenRegion();
+    return;
+  }
   const RegionKey key = tracker_.current();
   const int left = regions_.current();
   switch (regions_.Enter(key, tracker_.Centre(key))) {
@@ -584,7 +608,9 @@ void FrontEnd::StepBackEnd() {
 }
 
 void FrontEnd::UpdateStatus() {
-  if (regions_.pool_full()) {
+  if (relocalising_) {
+    status_ = MapperStatus::kLost;
+  } else if (regions_.pool_full()) {
     status_ = MapperStatus::kPoolFull;
   } else if (consecutive_rejections_ >= config_.front_end.lost_after_rejections) {
     status_ = MapperStatus::kLost;

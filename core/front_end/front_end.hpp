@@ -14,6 +14,7 @@
 #include <cstdint>
 
 #include "core/back_end/back_end.hpp"
+#include "core/back_end/global_localiser.hpp"
 #include "core/base/stage.hpp"
 #include "core/config.hpp"
 #include "core/front_end/first_registration.hpp"
@@ -154,6 +155,26 @@ class FrontEnd {
   int ReferenceMaps(int (&maps)[2], bool loop_entry) const;
   bool WellInside(const RegionalMap& r) const;
   void UpdateStatus();
+  // After each scan: last_world_, the status, the lost time.
+  void FinishScan(std::int64_t since_last_us);
+  // A fresh submap from the current scan at pose_ (the regional maps untouched).
+  void RestartSubmap(std::size_t hits);
+  // Lost and relocalisation (front_end_relocalise.cpp): whether this scan belongs to the lost
+  // path (the wheels lifted, a long rejection streak, an unknown start); the lost path itself
+  // (local tracking against a fresh submap, one bounded step of the global search, nothing
+  // inserted anywhere); resuming at the pose found.
+  bool LostNow();
+  // `may_be_near`: lost without a lift, the robot may be where it believes (front_end_relocalise.cpp).
+  void StartRelocalisation(bool may_be_near);
+  void RelocaliseScan(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, ProjectedScan* projected,
+                      const Pose2& predicted);
+  void StepRelocalisation(std::size_t hits);
+  void ResumeAt(const GlobalFix& fix);
+  // Back on the region lattice at the current pose, found in map `found`.
+  void Rejoin(int found);
+  // Localise-only (maps frozen): entering a region makes its map current if it has one (no new
+  // map, no back-end job, no closure) and aligns the submap to it at once.
+  void EnterFrozenRegion();
   // Back end: the region just left, a loop closure on re-entry, one queued job per scan.
   void OnRegionLeft(int left);
   // The regional reference no longer holds what reference_maps_ says (the back end used its
@@ -211,9 +232,17 @@ class FrontEnd {
   // map it could not place itself in (lost_in_region_), the last one it could.
   int anchor_region_ = -1;
   bool lost_in_region_ = false;
+  // Lost (front_end_relocalise.cpp; beside lost_in_region_, in what was padding).
+  bool relocalising_ = false;
+  bool restart_submap_ = false;  // the next scan on the floor starts a fresh submap
+  bool may_be_near_ = false;     // lost without a lift: the second registration may find it
   std::uint32_t scans_since_closure_try_ = 0;
   float path_at_closure_try_ = 0.0f;
   Pose2 last_scan_in_region_;
+  // Lost: the global search, and the robot's pose in the submap frame at the scan it searches
+  // with (the submap tracks the robot meanwhile, so the answer carries to the current scan).
+  GlobalLocaliser localiser_;
+  Pose2 frozen_in_submap_;
 };
 
 }  // namespace dpcr

@@ -17,6 +17,11 @@ void FrontEnd::RestoreStart(Point2 region_origin, const Pose2& start) {
   const FrontEndConfig& f = config_.front_end;
   tracker_.Restore(region_origin, f.region_width_m, f.region_hysteresis_m, Point2{start.x, start.y});
   have_scan_ = true;
+  if (config_.localisation.unknown_start && config_.localisation.relocalise && config_.front_end.enable_registration) {
+    // Where the robot is will be searched for (front_end_relocalise.cpp): no region yet.
+    StartRelocalisation(false);  // no pose to fall back on: searched until found
+    return;
+  }
   // The map the robot's pose is known in until it enters one: the nearest saved one.
   float best = INFINITY;
   for (int i = 0; i < regions_.size(); ++i) {
@@ -27,6 +32,12 @@ void FrontEnd::RestoreStart(Point2 region_origin, const Pose2& start) {
     }
   }
   const RegionKey key = tracker_.current();
+  if (config_.localisation.localise_only) {
+    // Maps frozen: no new map; the nearest saved one is the reference until a region has one.
+    EnterFrozenRegion();
+    if (regions_.current() < 0) (void)regions_.Enter(regions_[anchor_region_].key, tracker_.Centre(regions_[anchor_region_].key));
+    return;
+  }
   switch (regions_.Enter(key, tracker_.Centre(key))) {
     case RegionSet::Entry::kKnown:
       anchor_region_ = regions_.current();

@@ -14,6 +14,10 @@ struct OdometrySample {
   // false: a gyro-only robot (no wheel encoders): `pose` is constant, only the rate tells motion.
   bool has_wheels = true;
   bool has_gyro = false;
+  // The wheels are off the floor (a vacuum's wheel-drop switches; the motors stop): the robot is
+  // being carried, so neither wheels nor lidar say where it goes. The front end keeps every scan
+  // out of the maps and relocalises once the wheels are down again.
+  bool lifted = false;
   float gyro_yaw_rate = 0.0f;  // rad/s, when has_gyro
 };
 

@@ -1,7 +1,7 @@
 // dpcr-replay: maps a recorded log through the core and writes map, trajectory and metrics.
 //   dpcr-replay --carmen FILE.clf [--relations FILE] [--out DIR]
 //   dpcr-replay --uart lidar.uart --candump wheels.log [--lidar ld06|xv11] [--out DIR]
-//   either with [--load-map FILE [--start-pose X,Y,THETA]] [--save-map FILE] [--region-width S]
+//   either with [--load-map FILE [--start-pose X,Y,THETA] [--localise-only]] [--save-map FILE] [--region-width S]
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -43,6 +43,7 @@ struct Options {
   std::string load_map;
   std::string save_map;
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
+  bool localise_only = false;
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
   std::string scan_times;
   std::string heading = "wheels";  // FrontEndConfig::gyro_heading
@@ -85,6 +86,13 @@ void CheckApplicable(const Options& opt) {
   }
 }
 
+// --load-map: the start pose unknown (searched for in the maps) unless --start-pose gives it;
+// --localise-only: the maps frozen.
+void ApplyLocalisationOptions(const Options& opt, dpcr::MapperConfig* config) {
+  config->localisation.unknown_start = !opt.load_map.empty() && opt.given.count("--start-pose") == 0;
+  config->localisation.localise_only = opt.localise_only;
+}
+
 // --load-map after Init: a second session in the saved map's frame, at the given start pose.
 template <class MapperType>
 void LoadMapIfAsked(const Options& opt, MapperType* mapper) {
@@ -125,6 +133,7 @@ dpcr::MapperConfig CarmenMapperConfig(const Options& opt, float log_laser_offset
   const float offset = std::isnan(opt.laser_offset_m) ? log_laser_offset_m : opt.laser_offset_m;
   config.lidar.mount = dpcr::Pose2{offset, 0.0f, 0.0f};
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
+  ApplyLocalisationOptions(opt, &config);
   return config;
 }
 
@@ -248,6 +257,7 @@ int ReplayDevice(const Options& opt) {
   config.back_end.enable = !opt.front_end_only;
   config.front_end.gyro_heading = opt.heading == "gyro";
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
+  ApplyLocalisationOptions(opt, &config);
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));
   LoadMapIfAsked(opt, &mapper);
   const auto start = Clock::now();
@@ -308,8 +318,10 @@ int main(int argc, char** argv) {
   app.add_flag("--odometry-only", opt.odometry_only, "map with dead reckoning only (for comparison)");
   app.add_flag("--front-end-only", opt.front_end_only, "map without the back end (no region graph, no loop closures; for comparison)");
   app.add_option("--load-map", opt.load_map, "start from this saved map (same --profile; dpcr-map info FILE shows it)");
-  app.add_option("--start-pose", opt.start_pose, "with --load-map: the robot's start pose in the saved map's frame (x,y,theta)")
-      ->expected(3)->delimiter(',')->capture_default_str();
+  app.add_option("--start-pose", opt.start_pose, "with --load-map: the robot's start pose in the saved map's frame (x,y,theta); "
+                 "without it the start pose is unknown and searched for in the maps")
+      ->expected(3)->delimiter(',');
+  app.add_flag("--localise-only", opt.localise_only, "with --load-map: maps frozen (nothing inserted, no new region, graph unchanged)");
   app.add_option("--save-map", opt.save_map, "save the map at the end (atomically), for --load-map and dpcr-map");
   app.add_option("--region-width", opt.region_width_m, "region width S in metres (default: the configuration's, 4 m)")
       ->check(CLI::PositiveNumber);
@@ -319,6 +331,10 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   for (const CLI::Option* o : app.get_options()) {
     if (o->count() > 0) opt.given.insert(o->get_name());
+  }
+  if (opt.localise_only && opt.load_map.empty()) {
+    std::fprintf(stderr, "dpcr-replay: error: --localise-only needs --load-map\n");
+    return 2;
   }
   if (opt.carmen.empty() == opt.uart.empty()) {
     std::fprintf(stderr, "dpcr-replay: give either --carmen FILE or --uart FILE [--candump FILE]\n%s", app.help().c_str());

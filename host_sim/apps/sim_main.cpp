@@ -1,14 +1,18 @@
 // dpcr-sim: runs the world simulator into the mapper and writes map, trajectories and metrics.
 //   dpcr-sim --world apartment|office|hall|FILE [--minutes M] [--seed N] [--out DIR] [--emit-device DIR]
-//            [--load-map FILE [--start-pose X,Y,THETA]] [--save-map FILE] [--region-width S]
+//            [--load-map FILE [--start-pose X,Y,THETA | --map-origin X,Y,THETA] [--localise-only]]
+//            [--save-map FILE] [--region-width S] [--kidnaps N [--kidnap-from MIN]]
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <vector>
 
 #include "core/mapper.hpp"
 #include "host_sim/apps/config_error.hpp"
+#include "host_sim/apps/kidnap_report.hpp"
+#include "host_sim/apps/map_truth_check.hpp"
 #include "host_sim/apps/progress.hpp"
 #include "host_sim/apps/scan_times.hpp"
 #include "host_sim/drivers/device_files.hpp"
@@ -33,6 +37,12 @@ struct Options {
   std::string load_map;
   std::string save_map;
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
+  bool start_pose_given = false;  // without it, a loaded map's start pose is searched for
+  std::vector<float> map_origin;  // the loaded map's frame in the simulated world (for the figures)
+  bool localise_only = false;
+  int kidnaps = 0;
+  int people = 0;
+  double kidnap_from_min = 0.0;
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
   std::string scan_times;
   std::string heading = "wheels";  // the prediction's heading: wheels, or gyro (FrontEndConfig::gyro_heading)
@@ -48,6 +58,15 @@ struct Options {
 struct SpinTally {
   std::uint32_t scans = 0;
   std::uint32_t rejected = 0;
+  void Add(bool spinning, std::uint32_t rejected_now) {
+    if (!spinning) return;
+    ++scans;
+    rejected += rejected_now;
+  }
+  nlohmann::json Metrics() const {
+    return {{"scans", scans}, {"first_rejected", rejected},
+            {"rejected_fraction", scans > 0 ? static_cast<double>(rejected) / scans : 0.0}};
+  }
 };
 
 // The odometry the robot has (--odometry): false when it has none; gyro: the rate alone.
@@ -99,18 +118,43 @@ nlohmann::json InputMetrics(const Options& opt, const dpcr::sim::Simulation& sim
   const dpcr::sim::Pose2d& start = sim.start_pose();
   return {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed}, {"heading", opt.heading}, {"lidar", opt.lidar}, {"odometry", opt.odometry}, {"spins", opt.spins},
           {"plan", opt.fixed_plan ? "fixed" : "varied by the seed"}, {"start_pose_in_world", {start.x, start.y, start.theta}},
-          {"slip_events", sim.slip_events()}, {"coverage_tours", sim.tours_completed()}};
+          {"slip_events", sim.slip_events()}, {"people", opt.people}, {"kidnaps", opt.kidnaps}, {"coverage_tours", sim.tours_completed()}};
 }
 
-dpcr::sim::SimConfig SimConfigFor(const Options& opt) {
-  dpcr::sim::SimConfig sim_config;
-  sim_config.seed = opt.seed;
-  sim_config.duration_min = opt.minutes;
-  sim_config.vary_plan = !opt.fixed_plan;
-  if (opt.lidar == "xv11") sim_config.lidar = dpcr::sim::Xv11LidarConfig();
-  if (opt.lidar_min_hz >= 0.0) sim_config.lidar.rate_min_hz = opt.lidar_min_hz;
-  sim_config.motion.spin_every_waypoints = opt.spins;
-  return sim_config;
+// What to simulate: the options' seed, length, lidar (and its motor), spins, kidnaps and people.
+dpcr::sim::SimConfig SimulationConfig(const Options& opt) {
+  dpcr::sim::SimConfig c;
+  c.seed = opt.seed;
+  c.duration_min = opt.minutes;
+  c.vary_plan = !opt.fixed_plan;
+  if (opt.lidar == "xv11") c.lidar = dpcr::sim::Xv11LidarConfig();
+  if (opt.lidar_min_hz >= 0.0) c.lidar.rate_min_hz = opt.lidar_min_hz;
+  c.motion.spin_every_waypoints = opt.spins;
+  c.kidnaps.count = opt.kidnaps;
+  c.kidnaps.from_min = opt.kidnap_from_min;
+  c.people.count = opt.people;
+  return c;
+}
+
+// The ground truth's frame to the map's: the robot's first pose is the map's origin (or, given,
+// where the loaded map lies in the world).
+dpcr::Pose2 WorldToMap(const Options& opt, const dpcr::output::RunRecord& run) {
+  if (!opt.map_origin.empty()) return dpcr::Pose2{opt.map_origin[0], opt.map_origin[1], opt.map_origin[2]}.Inverse();
+  if (run.ground_truth.empty()) return dpcr::Pose2::Identity();
+  return run.estimate.front().pose * run.ground_truth.front().pose.Inverse();
+}
+
+// metrics.json relocalisation: kidnaps, the start fix, the accuracy of the scans placed.
+template <class MapperType>
+void AddRelocalisationFigures(const Options& opt, const MapperType& mapper, const dpcr::sim::Simulation& sim,
+                              const dpcr::output::RunRecord& run, const std::vector<dpcr::apps::Recovery>& recoveries,
+                              const std::vector<bool>& lost, const dpcr::Pose2& align, nlohmann::json* metrics) {
+  nlohmann::json& r = (*metrics)["relocalisation"];
+  if (opt.kidnaps > 0) r["kidnaps"] = dpcr::apps::KidnapMetrics(sim.kidnaps(), recoveries, align, 3.0, 0.3);
+  if (mapper.config().localisation.unknown_start && !run.estimate.empty()) {
+    r["start_fix"] = dpcr::apps::UnknownStartMetrics(run.estimate.front().stamp_us, recoveries, align);
+  }
+  if (!run.ground_truth.empty()) r["accuracy_when_placed"] = dpcr::apps::PlacedAccuracy(run.estimate, run.ground_truth, lost);
 }
 
 int Run(const Options& opt) {
@@ -118,7 +162,7 @@ int Run(const Options& opt) {
   static MapperType mapper;  // ~2 MiB: static storage, as on the robot
 
   const dpcr::sim::World world = dpcr::sim::LoadWorld(opt.world);
-  const dpcr::sim::SimConfig sim_config = SimConfigFor(opt);
+  const dpcr::sim::SimConfig sim_config = SimulationConfig(opt);
   dpcr::sim::Simulation sim(world, sim_config);
 
   dpcr::MapperConfig config;
@@ -128,6 +172,8 @@ int Run(const Options& opt) {
   config.back_end.enable = !opt.front_end_only;
   config.front_end.gyro_heading = opt.heading == "gyro";
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
+  config.localisation.unknown_start = !opt.load_map.empty() && !opt.start_pose_given;
+  config.localisation.localise_only = opt.localise_only;
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));
   // A second session: the saved map, the robot at a known pose in its frame (the world's start
   // pose is the saved frame's origin when the map came from a run in the same world).
@@ -143,6 +189,8 @@ int Run(const Options& opt) {
   dpcr::sim::SimEvent event;
   SpinTally spins;
   const double total_us = opt.minutes * 60e6;
+  std::vector<dpcr::apps::Recovery> recoveries;
+  std::vector<bool> lost;  // per scan: the status after it was lost
   while (sim.Step(&event)) {
     if (event.type == dpcr::sim::SimEventType::kOdometry) {
       if (!RobotOdometry(opt, &event.odometry)) continue;
@@ -151,12 +199,12 @@ int Run(const Options& opt) {
       continue;
     }
     if (emitter && !emitter->AddScan(event.scan)) throw std::runtime_error("device emitter rejected a scan");
+    const std::uint32_t fixes = mapper.counters().relocalisations;
     const std::uint32_t rejected_before = mapper.front_end_counters().first_rejected;
     dpcr::output::AddTimedScan(mapper, event.scan, &run);  // a SimScan is the vacuum mapper's scan type
-    if (event.spinning) {
-      ++spins.scans;
-      spins.rejected += mapper.front_end_counters().first_rejected - rejected_before;
-    }
+    if (mapper.counters().relocalisations != fixes) recoveries.push_back({event.scan.stamp_us, mapper.pose(), event.truth.ToPose2()});
+    lost.push_back(mapper.status() == dpcr::MapperStatus::kLost);
+    spins.Add(event.spinning, mapper.front_end_counters().first_rejected - rejected_before);
     run.ground_truth.push_back({event.scan.stamp_us, event.truth.ToPose2()});
     if ((run.estimate.size() & 63) == 0) progress.Update(static_cast<double>(event.time_us) / total_us);
   }
@@ -167,9 +215,8 @@ int Run(const Options& opt) {
   }
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
-  // The map's frame is the robot's first pose; draw the ground truth in it (start-aligned).
+  const dpcr::Pose2 align = WorldToMap(opt, run);
   if (!run.ground_truth.empty()) {
-    const dpcr::Pose2 align = run.estimate.front().pose * run.ground_truth.front().pose.Inverse();
     dpcr::eval::Trajectory gt_in_map = run.ground_truth;
     for (auto& p : gt_in_map) p.pose = align * p.pose;
     run.ground_truth.swap(gt_in_map);
@@ -178,11 +225,12 @@ int Run(const Options& opt) {
   dpcr::output::FinalizeTrajectory(mapper, &run);
   nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
   metrics["input"] = InputMetrics(opt, sim);
-  if (opt.spins > 0) {
-    metrics["spins"] = {{"scans", spins.scans}, {"first_rejected", spins.rejected},
-                        {"rejected_fraction", spins.scans > 0 ? static_cast<double>(spins.rejected) / spins.scans : 0.0}};
-  }
-  metrics = dpcr::output::WriteRunOutputs(opt.out, dpcr::output::RenderFused(mapper), run, metrics);
+  AddRelocalisationFigures(opt, mapper, sim, run, recoveries, lost, align, &metrics);
+  if (opt.spins > 0) metrics["spins"] = spins.Metrics();
+  const dpcr::output::FusedMap fused = dpcr::output::RenderFused(mapper);
+  const dpcr::sim::WorldRayCaster caster(world);
+  metrics["map_check"] = dpcr::apps::MapTruthCheck(fused, align.Inverse(), caster);
+  metrics = dpcr::output::WriteRunOutputs(opt.out, fused, run, metrics);
   if (!opt.save_map.empty()) dpcr::output::SaveMapFile(mapper, opt.save_map);
   dpcr::apps::WriteScanTimes(opt.scan_times, run);
 
@@ -212,8 +260,19 @@ int main(int argc, char** argv) {
   app.add_flag("--odometry-only", opt.odometry_only, "map with dead reckoning only (for comparison)");
   app.add_flag("--front-end-only", opt.front_end_only, "map without the back end (no region graph, no loop closures; for comparison)");
   app.add_option("--load-map", opt.load_map, "start from this saved map (a second session; dpcr-map info FILE shows it)");
-  app.add_option("--start-pose", opt.start_pose, "with --load-map: the robot's start pose in the saved map's frame (x,y,theta)")
-      ->expected(3)->delimiter(',')->capture_default_str();
+  app.add_option("--start-pose", opt.start_pose, "with --load-map: the robot's start pose in the saved map's frame (x,y,theta); "
+                 "without it the start pose is unknown and searched for in the maps")
+      ->expected(3)->delimiter(',');
+  app.add_option("--map-origin", opt.map_origin, "with --load-map: where the saved map's frame lies in the simulated world (x,y,theta: "
+                 "input.start_pose_in_world of the run that made it), to measure against the truth")
+      ->expected(3)->delimiter(',');
+  app.add_flag("--localise-only", opt.localise_only, "with --load-map: maps frozen (nothing inserted, no new region, graph unchanged)");
+  app.add_option("--kidnaps", opt.kidnaps, "carry the robot this many times to a random waypoint of its plan (wheels lifted meanwhile), "
+                 "spread from --kidnap-from to the end; metrics.json relocalisation.kidnaps")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--people", opt.people, "people walking through the home along the robot's tour (a home that changes)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--kidnap-from", opt.kidnap_from_min, "minute of the run from which kidnaps happen")->check(CLI::NonNegativeNumber);
   app.add_option("--save-map", opt.save_map, "save the map at the end (atomically), for --load-map and dpcr-map");
   app.add_option("--region-width", opt.region_width_m, "region width S in metres (default: the configuration's, 4 m)")
       ->check(CLI::PositiveNumber);
@@ -231,6 +290,11 @@ int main(int argc, char** argv) {
   app.add_option("--lidar-min-hz", opt.lidar_min_hz, "the lowest revolution rate of a wandering lidar motor (default: the model's; "
                  "xv11 4.5 Hz, ld06 none)")->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
+  opt.start_pose_given = app.count("--start-pose") > 0;
+  if ((opt.localise_only || !opt.map_origin.empty()) && opt.load_map.empty()) {
+    std::fprintf(stderr, "dpcr-sim: error: --localise-only and --map-origin need --load-map\n");
+    return 2;
+  }
   if (opt.out.empty()) opt.out = "out/" + std::filesystem::path(opt.world).stem().string();
   try {
     if (!opt.save_map.empty()) dpcr::output::PrepareMapFileDir(opt.save_map);

@@ -139,6 +139,10 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                    {"scans_kept_out_rejected", c.scans_kept_out_rejected},
                    {"scans_kept_out_bent", c.scans_kept_out_bent},
                    {"submap_restarts", c.submap_restarts}};
+  j["relocalisation"] = {{"lost_events", c.lost_events}, {"relocalisations", c.relocalisations},
+                         {"failed_rounds", c.relocalisation_failures}, {"lifted_scans", c.lifted_scans},
+                         {"localise_only", mapper.config().localisation.localise_only},
+                         {"unknown_start", mapper.config().localisation.unknown_start}};
   j["tracking"] = TrackingMetrics(c, mapper.front_end_counters().first_registrations);
   j["tracking_fraction"] = j["tracking"]["tracking_fraction"];
   const auto& f = mapper.front_end_counters();

@@ -112,4 +112,16 @@ void PlanFollower::AdvanceTo(double t_s) {
   t_ = t_s;
 }
 
+void PlanFollower::Relocate(const Pose2d& pose, std::size_t waypoint) {
+  pose_ = pose;
+  next_waypoint_ = tour_.empty() ? 0 : waypoint % tour_.size();
+  Move here;
+  here.start_t = t_;
+  here.start_pose = pose_;
+  here.start_distance = distance_;
+  here.start_rotation = rotation_;
+  move_ = here;  // an empty move ending now
+  NextMove();
+}
+
 }  // namespace dpcr::sim

@@ -30,6 +30,9 @@ class PlanFollower {
 
   // Moves time forward to t_s (never backwards).
   void AdvanceTo(double t_s);
+  // The robot put down at `pose` (a kidnap), at the current time: it resumes the tour from
+  // tour[waypoint] on. The wheel travel does not change (the wheels were lifted).
+  void Relocate(const Pose2d& pose, std::size_t waypoint);
   double time_s() const { return t_; }
   const Pose2d& pose() const { return pose_; }
   // Cumulative signed distance driven and cumulative (unwrapped) rotation since the start: the

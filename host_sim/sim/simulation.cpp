@@ -9,6 +9,8 @@ constexpr std::uint64_t kLidarStream = 0x9E3779B97F4A7C15ull;
 constexpr std::uint64_t kOdometryStream = 0xC2B2AE3D27D4EB4Full;
 constexpr std::uint64_t kPlanStream = 0x165667B19E3779F9ull;
 constexpr std::uint64_t kRateStream = 0x27D4EB2F165667C5ull;
+constexpr std::uint64_t kKidnapStream = 0x165667B19E3779F9ull;
+constexpr std::uint64_t kPeopleStream = 0x85EBCA77C2B2AE63ull;
 
 // A start pose drawn from the seed: a random waypoint of the canonical plan (so reachable from
 // everywhere the plan goes, never inside a closed cabinet), facing anywhere.
@@ -62,6 +64,62 @@ Simulation::Simulation(const World& world, const SimConfig& config)
   rate_hz_ = config.lidar.rate_hz;
   odom_period_us_ = static_cast<std::int64_t>(std::llround(1e6 / config.odometry.rate_hz));
   pending_scan_.type = SimEventType::kScan;
+  pose_ = follower_->pose();
+  ScheduleKidnaps();
+  people_ = People(config.people, plan_.waypoints, config.seed ^ kPeopleStream, static_cast<double>(end_us_) * 1e-6);
+}
+
+void Simulation::ScheduleKidnaps() {
+  const KidnapConfig& k = config_.kidnaps;
+  if (k.count <= 0) return;
+  if (!(k.from_min >= 0.0) || !(k.carry_min_s > 0.0) || !(k.carry_max_s >= k.carry_min_s)) {
+    throw WorldError("kidnaps: from_min must not be negative and 0 < carry_min_s <= carry_max_s");
+  }
+  const double from_s = k.from_min * 60.0, end_s = static_cast<double>(end_us_) * 1e-6;
+  const double spacing = (end_s - from_s) / k.count;
+  if (!(spacing > k.carry_max_s + 1.0)) {
+    throw WorldError("kidnaps: " + std::to_string(k.count) + " do not fit between minute " + std::to_string(k.from_min) +
+                     " and the end of the run (each needs more than the longest carry)");
+  }
+  std::mt19937_64 rng(config_.seed ^ kKidnapStream);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int i = 0; i < k.count; ++i) {
+    PlannedKidnap p;
+    const double carry = k.carry_min_s + unit(rng) * (k.carry_max_s - k.carry_min_s);
+    // Anywhere in the first part of its slot, so that the robot has time to recover before the next.
+    const double lift = from_s + spacing * (i + 0.5 * unit(rng) * (1.0 - (carry + 1.0) / spacing));
+    p.lift_us = static_cast<std::int64_t>(std::llround(lift * 1e6));
+    p.down_us = p.lift_us + static_cast<std::int64_t>(std::llround(carry * 1e6));
+    p.waypoint = std::uniform_int_distribution<std::size_t>(0, plan_.waypoints.size() - 1)(rng);
+    p.theta = (2.0 * unit(rng) - 1.0) * kPiD;
+    planned_.push_back(p);
+  }
+}
+
+void Simulation::AdvanceRobot(std::int64_t t_us) {
+  if (!lifted_ && next_kidnap_ < planned_.size() && t_us >= planned_[next_kidnap_].lift_us) {
+    const PlannedKidnap& p = planned_[next_kidnap_];
+    follower_->AdvanceTo(static_cast<double>(p.lift_us) * 1e-6 - carried_s_);
+    const Vec2 w = plan_.waypoints[p.waypoint];
+    kidnaps_.push_back(KidnapEvent{p.lift_us, 0, follower_->pose(), Pose2d{w.x, w.y, p.theta}});
+    lifted_ = true;
+  }
+  if (lifted_) {
+    const PlannedKidnap& p = planned_[next_kidnap_];
+    KidnapEvent& e = kidnaps_.back();
+    if (t_us < p.down_us) {
+      // Held where it was lifted, then where it will be put down (the carry between is not modelled).
+      pose_ = 2 * (t_us - p.lift_us) < p.down_us - p.lift_us ? e.from : e.to;
+      return;
+    }
+    carried_s_ += static_cast<double>(p.down_us - p.lift_us) * 1e-6;
+    follower_->Relocate(e.to, p.waypoint);
+    e.down_us = p.down_us;
+    lifted_ = false;
+    ++next_kidnap_;
+  }
+  follower_->AdvanceTo(static_cast<double>(t_us) * 1e-6 - carried_s_);
+  pose_ = follower_->pose();
 }
 
 Simulation::~Simulation() = default;
@@ -90,7 +148,7 @@ bool Simulation::Step(SimEvent* out) {
       if (next_odom_us_ > end_us_) return false;
       const std::int64_t t = next_odom_us_;
       next_odom_us_ += odom_period_us_;
-      follower_->AdvanceTo(static_cast<double>(t) * 1e-6);
+      AdvanceRobot(t);
       const double half_track = 0.5 * config_.odometry.track_m;
       const double d = follower_->distance_m(), r = follower_->rotation_rad();
       const double yaw_rate = (r - last_rotation_) * config_.odometry.rate_hz;
@@ -98,20 +156,21 @@ bool Simulation::Step(SimEvent* out) {
       out->type = SimEventType::kOdometry;
       out->time_us = t;
       odometry_.Sample(t, d - half_track * r, d + half_track * r, t == 0 ? 0.0 : yaw_rate, &out->odometry, &out->ticks);
-      out->truth = follower_->pose();
+      out->odometry.lifted = lifted_;
+      out->truth = pose_;
       out->sensor_truth = out->truth * lidar.mount;
       return true;
     }
     if (beam_us > end_us_) return false;
     const std::int64_t i = next_beam_ % n;
     ++next_beam_;
-    follower_->AdvanceTo(static_cast<double>(beam_us) * 1e-6);
-    const Pose2d sensor = follower_->pose() * lidar.mount;
+    AdvanceRobot(beam_us);
+    const Pose2d sensor = pose_ * lidar.mount;
     SimScan& scan = pending_scan_.scan;
     if (i == 0) {
       scan.beams.clear();
       scan.stamp_us = beam_us;
-      pending_scan_.truth = follower_->pose();
+      pending_scan_.truth = pose_;
       pending_scan_.sensor_truth = sensor;
       pending_scan_.spinning = false;
     }
@@ -120,6 +179,11 @@ bool Simulation::Step(SimEvent* out) {
     Beam beam;
     beam.angle_rad = NormalizeAngle(static_cast<float>(angle));
     beam.range_m = SimulateBeam(caster_, lidar, sensor, angle, &lidar_rng_);
+    if (people_.size() > 0) {
+      // A person in front of the wall: the beam returns from their legs.
+      const double d = people_.Cast(Vec2{sensor.x, sensor.y}, sensor.theta + angle, static_cast<double>(beam_us) * 1e-6, lidar.max_range_m);
+      if (d >= lidar.min_range_m && (beam.range_m <= 0.0f || d < static_cast<double>(beam.range_m))) beam.range_m = static_cast<float>(d);
+    }
     if (lidar.invalid_probability > 0.0 || lidar.junk_probability > 0.0 || lidar.spin_up_valid_probability < 1.0) {
       beam.range_m = DegradeBeam(beam.range_m, lidar, next_beam_ <= n, &lidar_rng_);
     }

@@ -6,15 +6,36 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "core/capacity.hpp"
 #include "core/config.hpp"
 #include "core/geometry/scan.hpp"
 #include "host_sim/sim/coverage_planner.hpp"
 #include "host_sim/sim/motion.hpp"
+#include "host_sim/sim/people.hpp"
 #include "host_sim/sim/sensors.hpp"
 
 namespace dpcr::sim {
+
+// Kidnaps: `count` times the robot is lifted (the wheels' lift flag set, the wheels still), held
+// where it was for half the carry, then held at a random waypoint of its plan (any heading) for
+// the other half, and put down there; it resumes its plan from that waypoint. The kidnaps are
+// spread evenly (with jitter) from `from_min` to the end of the run.
+struct KidnapConfig {
+  int count = 0;
+  double from_min = 0.0;
+  double carry_min_s = 3.0;
+  double carry_max_s = 6.0;
+};
+
+// One kidnap as it happened.
+struct KidnapEvent {
+  std::int64_t lift_us = 0;
+  std::int64_t down_us = 0;
+  Pose2d from;
+  Pose2d to;
+};
 
 struct SimConfig {
   std::uint64_t seed = 1;
@@ -26,6 +47,8 @@ struct SimConfig {
   MotionLimits motion;
   LidarConfig lidar;
   OdometryConfig odometry;
+  KidnapConfig kidnaps;
+  PeopleConfig people;  // people walking through the home, seen by the lidar
 };
 
 using SimScan = Scan<VacuumProfile::kMaxBeams>;
@@ -66,13 +89,32 @@ class Simulation {
   int slip_events() const { return odometry_.slip_events(); }
   int tours_completed() const { return follower_->tours_completed(); }
   // The robot pose at the current simulation time (after the last Step).
-  const Pose2d& current_pose() const { return follower_->pose(); }
+  const Pose2d& current_pose() const { return pose_; }
+  // The kidnaps so far (those whose carry has begun; down_us is 0 until put down).
+  const std::vector<KidnapEvent>& kidnaps() const { return kidnaps_; }
 
  private:
   // The time of beam `i` of the current revolution.
   std::int64_t BeamTime(std::int64_t i) const;
   // The next revolution's period (LidarConfig::rate_min_hz: a wandering motor speed).
   std::int64_t NextPeriodUs();
+  // Moves the robot to time t: along its plan, or carried (pose_, lifted_).
+  void AdvanceRobot(std::int64_t t_us);
+  void ScheduleKidnaps();
+
+  struct PlannedKidnap {
+    std::int64_t lift_us = 0;
+    std::int64_t down_us = 0;
+    std::size_t waypoint = 0;
+    double theta = 0.0;
+  };
+  std::vector<PlannedKidnap> planned_;
+  std::vector<KidnapEvent> kidnaps_;
+  std::size_t next_kidnap_ = 0;
+  bool lifted_ = false;
+  double carried_s_ = 0.0;  // time spent carried so far (the plan's clock stood still)
+  Pose2d pose_;             // the robot's true pose now
+  People people_;
 
   SimConfig config_;
   World world_;  // a copy: the caster points into it, so temporaries are safe to pass

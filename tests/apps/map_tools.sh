@@ -29,6 +29,12 @@ cmp -s "$T/export/map.pgm" "$T/a/map.pgm" || fail "exported PGM differs from the
 "$REPLAY" --uart "$T/dev/lidar.uart" --candump "$T/dev/wheels.log" --out "$T/c" --load-map "$T/maps/b.dpcr" \
   --save-map "$T/maps/c.dpcr" 2> /dev/null || fail "dpcr-replay --load-map"
 "$MAP" check "$T/maps/c.dpcr" || fail "replay session's map"
+# Localise-only at an unknown start (no --start-pose): the robot finds itself, the map is unchanged.
+"$REPLAY" --uart "$T/dev/lidar.uart" --candump "$T/dev/wheels.log" --out "$T/d" --load-map "$T/maps/a.dpcr" \
+  --localise-only --save-map "$T/maps/d.dpcr" 2> /dev/null || fail "dpcr-replay --localise-only"
+cmp -s "$T/maps/a.dpcr" "$T/maps/d.dpcr" || fail "localise-only changed the map"
+grep -q '"relocalisations": [1-9]' "$T/d/metrics.json" || fail "localise-only: the start was not found"
+if "$SIM" --world apartment --minutes 0.1 --out "$T/x" --localise-only 2> /dev/null; then fail "--localise-only without a map"; fi
 
 # Bad files: one line on stderr, exit 1, and dpcr-map check says no without a word.
 cp "$T/maps/a.dpcr" "$T/maps/flipped.dpcr"

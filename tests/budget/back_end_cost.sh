@@ -1,6 +1,7 @@
 #!/bin/sh
 # Worst-scan instruction budget (ctest label "budget"): runs dpcr_back_end_cost_run under
-# callgrind, which dumps one profile per AddScan call in which the back end worked; the largest
+# callgrind, which dumps one profile per AddScan call in which the back end worked or the robot
+# was lost (relocalisation after kidnaps); the largest
 # total is the worst single AddScan, compared with the vacuum profile's kBudgetWorstScanInstr.
 # The run must have exercised the back end (optimisations and loop closures), or the test fails.
 # Usage: back_end_cost.sh VALGRIND RUNNER
@@ -18,6 +19,7 @@ DUMPS=$(ls "$OUT"/cg.*.* 2>/dev/null | wc -l)
 echo "dumps $DUMPS worst_scan_Ir $WORST budget $BUDGET"
 [ "$(value optimizations)" -gt 0 ] || { echo "FAIL: no optimisation ran"; exit 1; }
 [ "$(value loop_closures_accepted)" -gt 0 ] || { echo "FAIL: no loop closure was accepted"; exit 1; }
+[ "$(value relocalisations)" -gt 0 ] || { echo "FAIL: no relocalisation after the kidnaps"; exit 1; }
 [ "$DUMPS" -gt 0 ] || { echo "FAIL: no per-scan dump"; exit 1; }
 [ "$WORST" -le "$BUDGET" ] || { echo "FAIL: worst AddScan over budget"; exit 1; }
 echo "ok"

@@ -200,6 +200,13 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(back_end.optimizer.min_step_rad, kNonNegative),
       FLOAT_FIELD(back_end.optimizer.kernel_phi, kPositive),
       FLOAT_FIELD(back_end.optimizer.damping, kNonNegative),
+      INT_FIELD(localisation.angles_per_step, kCount),
+      INT_FIELD(localisation.coarsen, (std::vector<double>{0.0, -1.0, 1.0, 1e9})),
+      FLOAT_FIELD(localisation.coarse_angle_step_rad, kPositive),
+      FLOAT_FIELD(localisation.window_margin_m, kNonNegative),
+      INT_FIELD(localisation.cloud_points, (std::vector<double>{0.0, -1.0, 9.0, 201.0, 1e9})),
+      FLOAT_FIELD(localisation.max_second_ratio, kPositiveRatio),
+      FLOAT_FIELD(localisation.min_inlier_ratio, kRatio),
   };
   AddPlicp(&t, "front_end.first_registration.", [](dpcr::MapperConfig& c) -> dpcr::PlicpConfig& { return c.front_end.first_registration; });
   AddPlicp(&t, "front_end.second_registration.", [](dpcr::MapperConfig& c) -> dpcr::PlicpConfig& { return c.front_end.second_registration; });

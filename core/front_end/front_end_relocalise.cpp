@@ -1,0 +1,151 @@
+// FrontEnd's lost handling (front_end.hpp): a robot that does not know where it is puts no scan
+// into any map; it tracks locally against a fresh submap and searches the regional maps for
+// itself (GlobalLocaliser, one bounded step per scan), then resumes in the same world frame.
+#include "core/front_end/front_end.hpp"
+
+namespace dpcr {
+
+bool FrontEnd::LostNow() {
+  if (relocalising_) return true;
+  if (!config_.localisation.relocalise || !config_.front_end.enable_registration || regions_.size() == 0) return false;
+  // Carried (wheels lifted), or the registrations have failed for a while: the pose is unknown.
+  const bool lifted = !odometry_.empty() && odometry_.newest().lifted;
+  // A streak without a lift may be a robot that only lost track nearby: the second registration
+  // may still find it where it thinks it is (as before the global search existed).
+  if (lifted || consecutive_rejections_ >= config_.front_end.lost_after_rejections) StartRelocalisation(!lifted);
+  return relocalising_;
+}
+
+void FrontEnd::StartRelocalisation(bool may_be_near) {
+  relocalising_ = true;
+  may_be_near_ = may_be_near;
+  restart_submap_ = true;  // what the submap holds may be of another place
+  consecutive_rejections_ = 0;
+  localiser_.Cancel();
+  ++counters_.lost_events;
+  status_ = MapperStatus::kLost;
+}
+
+void FrontEnd::RelocaliseScan(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us,
+                              ProjectedScan* projected, const Pose2& predicted) {
+  std::size_t hits = projected->hits;
+  ++counters_.scans_not_inserted;
+  last_scan_region_ = -1;  // in no map: its pose is not known in any
+  if (!odometry_.empty() && odometry_.newest().lifted) {
+    // Carried: nothing to track, nothing to search with.
+    ++counters_.lifted_scans;
+    pose_ = predicted;
+    localiser_.Cancel();
+    restart_submap_ = true;
+    return;
+  }
+  if (restart_submap_ || s_.submap->size() == 0) {
+    // A fresh submap from the first scan on the floor; the search starts from it at once.
+    pose_ = predicted;
+    RestartSubmap(hits);
+    restart_submap_ = false;
+    localiser_.Cancel();
+    StepRelocalisation(hits);
+    return;
+  }
+  // Local tracking: the search's answer is carried from its frozen scan to the current one.
+  RebuildSubmapReferenceIfDue();
+  RegisterScan(beams, motion, dt_us, projected, predicted);
+  hits = projected->hits;  // a re-deskewed scan was projected again
+  if (consecutive_rejections_ > 0) {
+    localiser_.Cancel();  // the frozen scan's place in the submap is no longer known
+    if (consecutive_rejections_ % config_.front_end.submap_restart_after_rejections == 0) RestartSubmap(hits);
+    return;
+  }
+  (void)s_.submap->Add(pose_, Span<const Point2>(s_.hits.data(), hits));
+  ++scans_since_submap_lines_;
+  if (may_be_near_ && regions_.current() >= 0 &&
+      ++scans_since_second_ >= static_cast<std::uint32_t>(config_.front_end.second_registration_period)) {
+    // Aligned to the map it was in, where it believes it is: found again without a search.
+    const bool aligned = SecondRegistration();
+    localiser_.ForgetGrid();  // the registration rebuilt the reference the search grid borrows
+    if (aligned) {
+      localiser_.Cancel();
+      relocalising_ = false;
+      ++counters_.relocalisations;
+      Rejoin(regions_.current());
+      return;
+    }
+  }
+  StepRelocalisation(hits);
+}
+
+void FrontEnd::StepRelocalisation(std::size_t hits) {
+  if (!localiser_.active()) {
+    localiser_.Begin(s_.back_end, Span<const Point2>(s_.hits.data(), hits), config_.localisation);
+    frozen_in_submap_ = pose_;
+  }
+  GlobalFix fix;
+  const Status st = localiser_.Step(s_.back_end, Span<const RegionalMap>(regions_.maps().data(), regions_.maps().size()), config_.front_end.region_width_m,
+                                    config_.front_end.region_reference, config_.localisation, config_.back_end, &fix);
+  // The search used the regional reference (its table, then a build).
+  InvalidateRegionReference();
+  if (st == Status::kOk) ResumeAt(fix);
+  if (st != Status::kRejected) return;
+  ++counters_.relocalisation_failures;
+  if (may_be_near_) {
+    // Not carried, and not found anywhere for sure (a symmetric room, a place outside the maps):
+    // back to tracking from the dead-reckoned pose, as without the search (the submap restarted;
+    // never smear still keeps rejected scans out). A new streak searches again.
+    relocalising_ = false;
+    InvalidateRegionReference();
+  }
+}
+
+void FrontEnd::ResumeAt(const GlobalFix& fix) {
+  // The frozen scan was at fix.in_map in the map; the submap frame follows, and the robot in it.
+  submap_pose_ = regions_[fix.map].anchor * fix.in_map * frozen_in_submap_.Inverse();
+  relocalising_ = false;
+  ++counters_.relocalisations;
+  Rejoin(fix.map);
+}
+
+void FrontEnd::Rejoin(int found) {
+  consecutive_rejections_ = 0;
+  const Pose2 world = pose();
+  last_world_ = world;
+  const FrontEndConfig& f = config_.front_end;
+  tracker_.Restore(region_origin(), f.region_width_m, f.region_hysteresis_m, Point2{world.x, world.y});
+  anchor_region_ = found;
+  lost_in_region_ = false;
+  const RegionKey key = tracker_.current();
+  if (config_.localisation.localise_only && regions_.Find(key) < 0) {
+    // Maps frozen: the map the robot was found in stays its reference.
+    const RegionKey found_key = regions_[found].key;
+    if (regions_.current() != found) (void)regions_.Enter(found_key, tracker_.Centre(found_key));
+  } else {
+    switch (regions_.Enter(key, tracker_.Centre(key))) {
+      case RegionSet::Entry::kKnown:
+        anchor_region_ = regions_.current();
+        break;
+      case RegionSet::Entry::kCreated:
+        // A region without a map yet, found through a neighbour's margin: chained to that map.
+        ++counters_.regions_created;
+        back_end_.AddRegion(regions_.maps(), regions_.current(), found);
+        anchor_region_ = regions_.current();
+        break;
+      case RegionSet::Entry::kPoolFull:
+        ++counters_.region_pool_full;
+        break;
+    }
+  }
+  InvalidateRegionReference();
+  // The second registration aligns the submap to the map at the next scan.
+  scans_since_second_ = static_cast<std::uint32_t>(f.second_registration_period);
+}
+
+void FrontEnd::EnterFrozenRegion() {
+  const RegionKey key = tracker_.current();
+  if (regions_.Find(key) < 0) return;  // no map there: the current one stays the reference
+  (void)regions_.Enter(key, tracker_.Centre(key));
+  anchor_region_ = regions_.current();
+  lost_in_region_ = false;
+  if (config_.front_end.enable_registration) (void)SecondRegistration();
+}
+
+}  // namespace dpcr

@@ -1,0 +1,253 @@
+// End to end, in the simulated apartment: a map made in one session (35 min, kept in memory),
+// then second sessions from it. Kidnaps (the robot carried with its wheels lifted) must be
+// recovered within 3 s of the put-down at the right place, with nothing inserted into any map
+// while the robot does not know where it is; a start at an unknown pose must be found; in
+// localise-only mode the saved map must come out byte for byte as it went in.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "core/mapper.hpp"
+#include "core/persistence/map_stream.hpp"
+#include "host_sim/sim/simulation.hpp"
+#include "host_sim/sim/world.hpp"
+
+namespace {
+
+using M = dpcr::Mapper<dpcr::VacuumProfile>;
+
+class VectorSink final : public dpcr::MapByteSink {
+ public:
+  dpcr::Status Write(const std::uint8_t* data, std::size_t size) override {
+    bytes.insert(bytes.end(), data, data + size);
+    return dpcr::Status::kOk;
+  }
+  std::vector<std::uint8_t> bytes;
+};
+
+dpcr::sim::SimConfig SimConfigFor(std::uint64_t seed, double minutes) {
+  dpcr::sim::SimConfig c;
+  c.seed = seed;
+  c.duration_min = minutes;
+  return c;
+}
+
+dpcr::MapperConfig MapperConfigFor(const dpcr::sim::SimConfig& sim) {
+  dpcr::MapperConfig c;
+  c.lidar = dpcr::sim::MapperLidarConfig(sim);
+  return c;
+}
+
+// The first session, made once: its saved bytes and where its frame lies in the world.
+struct SavedMap {
+  std::vector<std::uint8_t> bytes;
+  dpcr::Pose2 origin;  // the map frame (the robot's first pose) in the world
+};
+
+const SavedMap& Apartment() {
+  static const SavedMap saved = [] {
+    const dpcr::sim::SimConfig sim_config = SimConfigFor(1, 35.0);
+    auto m = std::make_unique<M>();
+    REQUIRE(m->Init(MapperConfigFor(sim_config)) == dpcr::Status::kOk);
+    dpcr::sim::Simulation sim(dpcr::sim::LoadBuiltinWorld("apartment"), sim_config);
+    dpcr::sim::SimEvent e;
+    while (sim.Step(&e)) {
+      if (e.type == dpcr::sim::SimEventType::kOdometry) {
+        m->AddOdometry(e.odometry);
+      } else {
+        (void)m->AddScan(e.scan);
+      }
+    }
+    REQUIRE(m->counters().lost_events == 0);  // an ordinary session never gets lost
+    SavedMap s;
+    VectorSink sink;
+    REQUIRE(m->SaveMap(sink).ok());
+    s.bytes = sink.bytes;
+    s.origin = sim.start_pose().ToPose2();
+    return s;
+  }();
+  return saved;
+}
+
+std::unique_ptr<M> Loaded(const dpcr::MapperConfig& config, const dpcr::Pose2& start = dpcr::Pose2::Identity()) {
+  auto m = std::make_unique<M>();
+  REQUIRE(m->Init(config) == dpcr::Status::kOk);
+  dpcr::MemoryMapSource source(dpcr::Span<const std::uint8_t>(Apartment().bytes.data(), Apartment().bytes.size()));
+  REQUIRE(m->LoadMap(source, start).ok());
+  return m;
+}
+
+double ErrorM(const dpcr::Pose2& estimate, const dpcr::Pose2& truth_in_world) {
+  const dpcr::Pose2 truth = Apartment().origin.Inverse() * truth_in_world;
+  return std::hypot(static_cast<double>(estimate.x - truth.x), static_cast<double>(estimate.y - truth.y));
+}
+
+std::vector<std::int16_t> Render(const M& m) {
+  const dpcr::CellBox box = m.MapBounds();
+  std::vector<std::int16_t> cells(static_cast<std::size_t>(box.width() * box.height()));
+  REQUIRE(m.RenderMap(box, dpcr::Span<std::int16_t>(cells.data(), cells.size())) == dpcr::Status::kOk);
+  return cells;
+}
+
+}  // namespace
+
+// The target is >= 95 % of kidnaps within 3 s: of six, five; an ambiguous first round
+// (a search over all maps takes about 2.5 s) may make one wait for a second.
+TEST_CASE("Kidnapped with the wheels lifted: found again within 3 s, in the right place, nothing inserted meanwhile") {
+  // The same seed as the first session: the robot starts where that map's frame is.
+  dpcr::sim::SimConfig sim_config = SimConfigFor(1, 4.0);
+  sim_config.kidnaps.count = 6;
+  sim_config.kidnaps.from_min = 0.5;
+  auto m = Loaded(MapperConfigFor(sim_config));
+  dpcr::sim::Simulation sim(dpcr::sim::LoadBuiltinWorld("apartment"), sim_config);
+  dpcr::sim::SimEvent e;
+  std::vector<std::int16_t> at_lift;
+  std::size_t tiles_at_lift = 0;
+  bool carried = false, lost_since_lift = false;
+  std::int64_t down_us = -1;
+  int recovered = 0, in_time = 0, checked_unchanged = 0;
+  double worst_m = 0.0, slowest_s = 0.0;
+  while (sim.Step(&e)) {
+    if (e.type == dpcr::sim::SimEventType::kOdometry) {
+      if (e.odometry.lifted && !carried) {
+        carried = lost_since_lift = true;
+        at_lift = Render(*m);
+        tiles_at_lift = m->tiles_used();
+      }
+      if (!e.odometry.lifted && carried) {
+        carried = false;
+        down_us = e.time_us;
+      }
+      m->AddOdometry(e.odometry);
+      continue;
+    }
+    const std::uint32_t fixes = m->counters().relocalisations;
+    (void)m->AddScan(e.scan);
+    if (lost_since_lift && m->status() == dpcr::MapperStatus::kLost) {
+      // Lost since the lift: no map has changed.
+      REQUIRE(m->tiles_used() == tiles_at_lift);
+      if (!carried && down_us >= 0 && e.scan.stamp_us - down_us < 200000) {
+        REQUIRE(Render(*m) == at_lift);
+        ++checked_unchanged;
+      }
+    }
+    if (m->counters().relocalisations != fixes && down_us >= 0 && !carried) {
+      ++recovered;
+      lost_since_lift = false;
+      worst_m = std::fmax(worst_m, ErrorM(m->pose(), e.truth.ToPose2()));
+      const double took_s = static_cast<double>(e.scan.stamp_us - down_us) * 1e-6;
+      slowest_s = std::fmax(slowest_s, took_s);
+      if (took_s <= 3.0) ++in_time;
+      down_us = -1;
+    }
+  }
+  INFO("recovered " << recovered << " (" << in_time << " within 3 s) of " << sim.kidnaps().size() << ", worst error " << worst_m << " m, slowest " << slowest_s << " s");
+  REQUIRE(sim.kidnaps().size() == 6);
+  CHECK(m->counters().lost_events >= 6);
+  CHECK(m->counters().lifted_scans > 6 * 25);
+  CHECK(checked_unchanged >= 6);
+  CHECK(recovered == 6);
+  CHECK(worst_m < 0.3);
+  CHECK(in_time >= 5);
+  CHECK(slowest_s <= 9.0);
+}
+
+TEST_CASE("Started at an unknown pose in a saved map: found within seconds, in the right place") {
+  for (std::uint64_t seed : {2u, 3u, 4u}) {
+    const dpcr::sim::SimConfig sim_config = SimConfigFor(seed, 0.25);
+    dpcr::MapperConfig config = MapperConfigFor(sim_config);
+    config.localisation.unknown_start = true;
+    auto m = Loaded(config);
+    REQUIRE(m->status() == dpcr::MapperStatus::kLost);  // lost until found
+    dpcr::sim::Simulation sim(dpcr::sim::LoadBuiltinWorld("apartment"), sim_config);
+    dpcr::sim::SimEvent e;
+    std::int64_t first_us = -1, found_us = -1;
+    double error_m = 1e9;
+    while (sim.Step(&e) && found_us < 0) {
+      if (e.type == dpcr::sim::SimEventType::kOdometry) {
+        m->AddOdometry(e.odometry);
+        continue;
+      }
+      if (first_us < 0) first_us = e.scan.stamp_us;
+      (void)m->AddScan(e.scan);
+      if (m->counters().relocalisations > 0) {
+        found_us = e.scan.stamp_us;
+        error_m = ErrorM(m->pose(), e.truth.ToPose2());
+      }
+    }
+    INFO("seed " << seed << ": found after " << static_cast<double>(found_us - first_us) * 1e-6 << " s, error " << error_m << " m");
+    REQUIRE(found_us >= 0);
+    CHECK(found_us - first_us <= 5000000);
+    CHECK(error_m < 0.3);
+    CHECK(m->status() == dpcr::MapperStatus::kTracking);
+  }
+}
+
+TEST_CASE("Localise-only: the maps and the graph come out exactly as they went in") {
+  dpcr::sim::SimConfig sim_config = SimConfigFor(5, 2.0);
+  sim_config.kidnaps.count = 2;
+  dpcr::MapperConfig config = MapperConfigFor(sim_config);
+  config.localisation.unknown_start = true;
+  config.localisation.localise_only = true;
+  auto m = Loaded(config);
+  dpcr::sim::Simulation sim(dpcr::sim::LoadBuiltinWorld("apartment"), sim_config);
+  dpcr::sim::SimEvent e;
+  double sum_m = 0.0;
+  int placed = 0;
+  while (sim.Step(&e)) {
+    if (e.type == dpcr::sim::SimEventType::kOdometry) {
+      m->AddOdometry(e.odometry);
+      continue;
+    }
+    (void)m->AddScan(e.scan);
+    if (m->status() == dpcr::MapperStatus::kTracking) {
+      sum_m += ErrorM(m->pose(), e.truth.ToPose2());
+      ++placed;
+    }
+  }
+  VectorSink after;
+  REQUIRE(m->SaveMap(after).ok());
+  REQUIRE(after.bytes == Apartment().bytes);
+  CHECK(m->counters().relocalisations >= 3);  // the start and both kidnaps
+  REQUIRE(placed > 600);
+  INFO("mean error while placed " << sum_m / placed << " m over " << placed << " scans");
+  CHECK(sum_m / placed < 0.15);
+}
+
+TEST_CASE("Started at an unknown pose that matches nothing: stays lost, changes nothing, never guesses") {
+  const dpcr::sim::SimConfig sim_config = SimConfigFor(1, 1.0);
+  dpcr::MapperConfig config = MapperConfigFor(sim_config);
+  config.localisation.unknown_start = true;
+  auto m = Loaded(config);
+  const std::vector<std::int16_t> before = Render(*m);
+  // A place that is nowhere in the apartment: a round room (so the scans track each other and
+  // search rounds run to their end), with still wheels.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> range(1.19f, 1.21f);
+  for (int s = 0; s < 300; ++s) {
+    const std::int64_t stamp = static_cast<std::int64_t>(s) * 100000 + 100000;
+    for (int k = 0; k < 10; ++k) {
+      dpcr::OdometrySample o;
+      o.stamp_us = stamp - 100000 + k * 10000;
+      m->AddOdometry(o);
+    }
+    M::ScanType scan;
+    scan.stamp_us = stamp;
+    for (int b = 0; b < 450; ++b) {
+      dpcr::Beam beam;
+      beam.angle_rad = -dpcr::kPi + 2.0f * dpcr::kPi * static_cast<float>(b) / 450.0f;
+      beam.range_m = range(rng);
+      (void)scan.beams.push_back(beam);
+    }
+    (void)m->AddScan(scan);
+    REQUIRE(m->status() == dpcr::MapperStatus::kLost);
+  }
+  CHECK(m->counters().relocalisations == 0);
+  INFO("failed rounds " << m->counters().relocalisation_failures);
+  CHECK(m->counters().relocalisation_failures >= 3);  // rounds ran and found nothing sure
+  CHECK(Render(*m) == before);
+}
