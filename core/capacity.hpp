@@ -47,9 +47,13 @@ struct VacuumProfile {
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 65'000;
   static constexpr std::uint64_t kBudgetInsertionInstr = 1'070'000;
   static constexpr std::uint64_t kBudgetLineExtractionInstr = 172'000;
-  // The worst single AddScan call with the back end at work (a loop-closure search, a map-to-map
-  // registration, an optimisation), counted by tests/budget/back_end_cost.sh.
-  static constexpr std::uint64_t kBudgetWorstScanInstr = 19'000'000;  // 14.4 M measured (a map-to-map job)
+  // The worst single AddScan call with the back end at work (a slice of a loop-closure search, a
+  // map-to-map registration, an optimisation, a step of a lost robot's global search), counted by
+  // tests/budget/back_end_cost.sh. Was 19 M (14.4 M measured, a map-to-map job); the worst is now
+  // a relocalisation step (one map's coarse grid and a slice of 45 headings over it, 19.2 M; the
+  // back end's own worst, a map-to-map job, is 17.2 M; a loop-closure search slice less). ~20-40 ms
+  // on a Cortex-A53: a fifth to two fifths of a 10 Hz scan period.
+  static constexpr std::uint64_t kBudgetWorstScanInstr = 21'000'000;
 };
 
 // The public benchmark logs (intel.clf: a 30 m x 30 m lab, ~900 m² with long corridors):

@@ -142,6 +142,27 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
     ++scans_since_submap_lines_;
   }
   // 3. Regions, and the second registration.
+  TrackRegions();
+  // 4b. Once into the current regional map, or the anchor map while the robot cannot place
+  // itself in the current one; not a scan kept out above, nor in localise-only mode.
+  if (keep_out || config_.localisation.localise_only) {
+    ++counters_.scans_not_inserted;
+    // Its pose is still known in the anchor region's frame.
+    last_scan_region_ = anchor_region_ >= 0 ? anchor_region_ : regions_.current();
+    if (last_scan_region_ >= 0) last_scan_in_region_ = Between(regions_[last_scan_region_].anchor, pose());
+  } else if (lost_in_region_ && anchor_region_ >= 0) {
+    ++counters_.scans_into_anchor_map;
+    InsertIntoRegion(projected, anchor_region_);
+  } else {
+    InsertIntoRegion(projected, regions_.current());
+  }
+  // 5. Back end: at most one queued job.
+  StepBackEnd();
+  FinishScan(since_last_us);
+  return Status::kOk;
+}
+
+void FrontEnd::TrackRegions() {
   const Pose2 world = pose();
   if (have_scan_) path_m_ += std::hypot(world.x - last_world_.x, world.y - last_world_.y);
   if (!have_scan_) {
@@ -163,23 +184,6 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
       SecondRegistration();
     }
   }
-  // 4b. Once into the current regional map, or the anchor map while the robot cannot place
-  // itself in the current one; not a scan kept out above, nor in localise-only mode.
-  if (keep_out || config_.localisation.localise_only) {
-    ++counters_.scans_not_inserted;
-    // Its pose is still known in the anchor region's frame.
-    last_scan_region_ = anchor_region_ >= 0 ? anchor_region_ : regions_.current();
-    if (last_scan_region_ >= 0) last_scan_in_region_ = Between(regions_[last_scan_region_].anchor, pose());
-  } else if (lost_in_region_ && anchor_region_ >= 0) {
-    ++counters_.scans_into_anchor_map;
-    InsertIntoRegion(projected, anchor_region_);
-  } else {
-    InsertIntoRegion(projected, regions_.current());
-  }
-  // 5. Back end: at most one queued job.
-  StepBackEnd();
-  FinishScan(since_last_us);
-  return Status::kOk;
 }
 
 void FrontEnd::FinishScan(std::int64_t since_last_us) {

@@ -144,6 +144,9 @@ class FrontEnd {
   bool AfterFirstRegistration(bool uncertain, std::int64_t since_last_us, std::size_t hits);
   void RebuildSubmapReferenceIfDue();
   DPCR_STAGE void RefitSubmapLines();
+  // Step 3 of AddScan: the region the robot is in (entering one may close a loop), and the
+  // second registration when due.
+  void TrackRegions();
   void EnterRegion(bool first);
   // The second registration; `result` (optional) gets the registration's answer when one ran,
   // and `region` the map whose frame it is in. True when accepted. `loop_entry`: against the
