@@ -101,13 +101,13 @@ void ForEachField(M& m, dpcr::MapperConfig& c) {
   dpcr::GridConfig& g = c.grid;
   m(g.resolution_m), m(g.hit_delta), m(g.miss_delta), m(g.clamp_max), m(g.clamp_min), m(g.settle_at_clamp), m(g.hit_margin_m);
   dpcr::LidarConfig& l = c.lidar;
-  m(l.min_range_m), m(l.max_range_m), m(l.no_return_free_m), m(l.mount);
+  m(l.min_range_m), m(l.max_range_m), m(l.no_return_free_m), m(l.mount), m(l.drop_isolated_returns);
   dpcr::FrontEndConfig& f = c.front_end;
   m(f.submap_scans), m(f.submap_line_period), m(f.region_line_period), m(f.second_registration_period),
       m(f.submap_miss_range_m), m(f.region_miss_range_m), m(f.submap_refit_gate_m), m(f.submap_refit_min_points),
       m(f.region_width_m), m(f.region_hysteresis_m), m(f.region_mature_scans), m(f.reference_inner_margin_m),
       m(f.enable_registration), m(f.lost_after_rejections), m(f.prior_info_xy), m(f.prior_info_theta),
-      m(f.second_registration_max_points);
+      m(f.second_registration_max_points), m(f.min_start_hits), m(f.redeskew_min_m), m(f.redeskew_min_rad);
   Plicp(m, f.first_registration);
   m(f.search_on_rejection), m(f.search_turn_rad);
   m(f.search.resolution_m), m(f.search.sigma_m), m(f.search.kernel_radius_cells), m(f.search.angle_window_rad),
@@ -122,16 +122,16 @@ void ForEachField(M& m, dpcr::MapperConfig& c) {
       m(b.correlated_points), m(b.floor_sigma_m), m(b.floor_sigma_rad), m(b.sequence_sigma_m), m(b.sequence_sigma_rad),
       m(b.loop_min_path_m), m(b.loop_retry_scans), m(b.loop_retry_path_m), m(b.search_base_m), m(b.search_per_metre_m),
       m(b.search_max_m), m(b.search_base_rad), m(b.search_per_metre_rad), m(b.search_max_rad), m(b.search_points),
-      m(b.match_grid_coarsen);
+      m(b.search_evaluations_per_step), m(b.match_grid_coarsen);
   m(b.search.min_angle_step_rad), m(b.search.max_angle_step_rad), m(b.search.min_score), m(b.search.max_second_ratio),
       m(b.search.peak_separation_m), m(b.search.peak_separation_rad);
   Plicp(m, b.registration);
   Plicp(m, b.closure_registration);
   m(b.max_edge_chi2), m(b.optimizer.max_iterations), m(b.optimizer.min_step_m), m(b.optimizer.min_step_rad),
       m(b.optimizer.kernel_phi), m(b.optimizer.damping);
-  dpcr::LocalisationConfig& l = c.localisation;
-  m(l.relocalise), m(l.unknown_start), m(l.localise_only), m(l.coarsen), m(l.coarse_angle_step_rad), m(l.angles_per_step),
-      m(l.window_margin_m), m(l.cloud_points), m(l.max_second_ratio), m(l.min_inlier_ratio);
+  dpcr::LocalisationConfig& loc = c.localisation;
+  m(loc.relocalise), m(loc.unknown_start), m(loc.localise_only), m(loc.coarsen), m(loc.coarse_angle_step_rad),
+      m(loc.angles_per_step), m(loc.window_margin_m), m(loc.cloud_points), m(loc.max_second_ratio), m(loc.min_inlier_ratio);
 }
 
 }  // namespace

@@ -152,6 +152,9 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(front_end.prior_info_xy, kNonNegative),
       FLOAT_FIELD(front_end.prior_info_theta, kNonNegative),
       INT_FIELD(front_end.second_registration_max_points, kCount),  // 0 divided by zero in SubmapTarget
+      INT_FIELD(front_end.min_start_hits, (std::vector<double>{-1.0, -2e9, 1e9})),
+      FLOAT_FIELD(front_end.redeskew_min_m, kNonNegative),
+      FLOAT_FIELD(front_end.redeskew_min_rad, kNonNegative),
       // The coarse pose search and the weak-match rebuild, unchecked until fuzz/fuzz_mapper_config.cpp
       // found e.g. kernel_radius_cells = INT_MIN, sigma_m = NaN or 1e-30, or angle_window_rad = NaN
       // overflowing int casts in rotation_search.cpp after a rejected registration.
@@ -187,6 +190,7 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(back_end.search_per_metre_rad, kNonNegative),
       FLOAT_FIELD(back_end.search_max_rad, kPositive),
       INT_FIELD(back_end.search_points, kCount),
+      INT_FIELD(back_end.search_evaluations_per_step, kCount),
       INT_FIELD(back_end.match_grid_coarsen, (std::vector<double>{0.0, -1.0, 1.0, 1e9})),
       FLOAT_FIELD(back_end.search.min_angle_step_rad, kPositive),
       FLOAT_FIELD(back_end.search.max_angle_step_rad, kPositive),
