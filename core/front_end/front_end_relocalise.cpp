@@ -22,6 +22,9 @@ void FrontEnd::StartRelocalisation(bool may_be_near) {
   restart_submap_ = true;  // what the submap holds may be of another place
   consecutive_rejections_ = 0;
   localiser_.Cancel();
+  // A loop-closure search under way is void: the global search takes its grid (the lent table),
+  // and the submap it placed is gone.
+  if (back_end_.searching()) back_end_.CancelLoopClosure();
   ++counters_.lost_events;
   status_ = MapperStatus::kLost;
 }
