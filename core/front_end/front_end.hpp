@@ -178,6 +178,8 @@ class FrontEnd {
   // Localise-only (maps frozen): entering a region makes its map current if it has one (no new
   // map, no back-end job, no closure) and aligns the submap to it at once.
   void EnterFrozenRegion();
+  // Makes region `key` current (a new one chained to map `from`) and the anchor; counts a full pool.
+  void EnterRegionChainedTo(RegionKey key, int from);
   // Back end: the region just left, a loop closure on re-entry, one queued job per scan.
   void OnRegionLeft(int left);
   // The regional reference no longer holds what reference_maps_ says (the back end used its

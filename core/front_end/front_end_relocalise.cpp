@@ -122,20 +122,8 @@ void FrontEnd::Rejoin(int found) {
     const RegionKey found_key = regions_[found].key;
     if (regions_.current() != found) (void)regions_.Enter(found_key, tracker_.Centre(found_key));
   } else {
-    switch (regions_.Enter(key, tracker_.Centre(key))) {
-      case RegionSet::Entry::kKnown:
-        anchor_region_ = regions_.current();
-        break;
-      case RegionSet::Entry::kCreated:
-        // A region without a map yet, found through a neighbour's margin: chained to that map.
-        ++counters_.regions_created;
-        back_end_.AddRegion(regions_.maps(), regions_.current(), found);
-        anchor_region_ = regions_.current();
-        break;
-      case RegionSet::Entry::kPoolFull:
-        ++counters_.region_pool_full;
-        break;
-    }
+    // A region without a map yet, found through a neighbour's margin: chained to that map.
+    EnterRegionChainedTo(key, found);
   }
   InvalidateRegionReference();
   // The second registration aligns the submap to the map at the next scan.

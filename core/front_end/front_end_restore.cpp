@@ -38,13 +38,17 @@ void FrontEnd::RestoreStart(Point2 region_origin, const Pose2& start) {
     if (regions_.current() < 0) (void)regions_.Enter(regions_[anchor_region_].key, tracker_.Centre(regions_[anchor_region_].key));
     return;
   }
+  EnterRegionChainedTo(key, anchor_region_);
+}
+
+void FrontEnd::EnterRegionChainedTo(RegionKey key, int from) {
   switch (regions_.Enter(key, tracker_.Centre(key))) {
     case RegionSet::Entry::kKnown:
       anchor_region_ = regions_.current();
       break;
     case RegionSet::Entry::kCreated:
       ++counters_.regions_created;
-      back_end_.AddRegion(regions_.maps(), regions_.current(), anchor_region_);
+      back_end_.AddRegion(regions_.maps(), regions_.current(), from);
       anchor_region_ = regions_.current();
       break;
     case RegionSet::Entry::kPoolFull:
