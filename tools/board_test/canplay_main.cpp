@@ -2,7 +2,11 @@
 // (frame i at start + (stamp_i - stamp_0)), like canplayer, with optional faults: every Nth
 // wheel-ticks frame dropped, every Mth sent twice. Runs inside the emulated board
 // (tools/emulated-board-test). Prints one summary line; exits 0 when every frame was sent.
-//   dpcr-canplay --log wheels.log --iface vcan0 [--drop-every N] [--dup-every M]
+//   dpcr-canplay --log wheels.log --iface vcan0 [--drop-every N] [--dup-every M] [--ready PATH]
+// --ready: once the log is loaded and the socket open, "DPCR-READY" is written to PATH (the
+// guest's console, where the host starts the lidar bytes on it) and the first frame goes at once:
+// both streams start from the same instant. (Said before the log was loaded, the wheels started
+// 0.5 s after the lidar in a 3-minute run, and the firmware rightly saw the turns that late.)
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -45,6 +49,17 @@ bool Send(int fd, const dpcr::CanFrame& frame) {
   return false;
 }
 
+// "DPCR-READY" and the uptime, one line to `path`.
+bool SayReady(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) {
+    std::fprintf(stderr, "dpcr-canplay: %s: %s\n", path.c_str(), std::strerror(errno));
+    return false;
+  }
+  std::fprintf(f, "DPCR-READY %.2f\n", static_cast<double>(NowUs()) / 1e6);
+  return std::fclose(f) == 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -52,6 +67,7 @@ int main(int argc, char** argv) {
   std::string iface = "vcan0";
   long drop_every = 0;
   long dup_every = 0;
+  std::string ready_path;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     const char* v = argv[i + 1];
@@ -63,13 +79,15 @@ int main(int argc, char** argv) {
       drop_every = std::atol(v);
     } else if (a == "--dup-every") {
       dup_every = std::atol(v);
+    } else if (a == "--ready") {
+      ready_path = v;
     } else {
       std::fprintf(stderr, "dpcr-canplay: unknown option %s\n", a.c_str());
       return 2;
     }
   }
   if (log_path.empty()) {
-    std::fprintf(stderr, "usage: dpcr-canplay --log FILE [--iface IF] [--drop-every N] [--dup-every M]\n");
+    std::fprintf(stderr, "usage: dpcr-canplay --log FILE [--iface IF] [--drop-every N] [--dup-every M] [--ready PATH]\n");
     return 2;
   }
   std::vector<dpcr::CandumpRecord> records;
@@ -83,6 +101,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "dpcr-canplay: %s\n", error.c_str());
     return 1;
   }
+  if (!ready_path.empty() && !SayReady(ready_path)) return 1;
   long sent = 0, dropped = 0, duplicated = 0, failed = 0, ticks = 0;
   std::int64_t late_max_us = 0;
   const std::int64_t start_us = NowUs();

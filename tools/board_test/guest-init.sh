@@ -1,7 +1,7 @@
 #!/bin/busybox sh
 # /init of the emulated board (tools/emulated-board-test): vcan0 up, dpcr-firmware on the
-# pci-serial UART (/dev/ttyS0) and vcan0, DPCR-READY on the console once it runs (the host then
-# starts the lidar bytes), the wheel frames replayed onto vcan0, SIGTERM once both streams have
+# pci-serial UART (/dev/ttyS0) and vcan0, the wheel frames replayed onto vcan0 (dpcr-canplay says
+# DPCR-READY on the console as it starts them; the host then starts the lidar bytes), SIGTERM once both streams have
 # ended, and the results (trajectory, map.dpcr, recorded streams with their device.json, logs) as a gzipped tar on the
 # second serial port (/dev/ttyS1). Kernel command-line words: DPCR_CASE, DPCR_DROP_EVERY and
 # DPCR_DUP_EVERY (wheel frames dropped / sent twice, 0: none).
@@ -38,9 +38,10 @@ until grep -q "dpcr-firmware: running" /out/firmware.log; do
   n=$((n + 1)); [ $n -lt 200 ] || finish "firmware start timeout"
   sleep 0.05
 done
-echo "DPCR-READY $(cut -d' ' -f1 /proc/uptime)"
+# dpcr-canplay says DPCR-READY on the console once its log is loaded, and sends its first frame
+# then: the host starts the lidar bytes on that line, so both streams start together.
 dpcr-canplay --log /scenario/wheels.log --iface vcan0 --drop-every "${DPCR_DROP_EVERY:-0}" \
-  --dup-every "${DPCR_DUP_EVERY:-0}" > /out/canplay.log 2>&1
+  --dup-every "${DPCR_DUP_EVERY:-0}" --ready /dev/console > /out/canplay.log 2>&1
 echo "dpcr-init: wheel frames done: $(tail -1 /out/canplay.log)"
 
 # The lidar ends with the wheels; wait until the UART has been quiet for 1.5 s (bytes counted by
