@@ -69,6 +69,11 @@ struct BackEndConfig {
   // re-enters, so the usual inlier ratio holds).
   PlicpConfig registration = MapRegistrationConfig();
   PlicpConfig closure_registration = ClosureRegistrationConfig();
+  // The mean residual a closure may have when it moves the graph by more than the search's base
+  // window (search_base_m, search_base_rad): a first registration's bound. (Apartment seed 16 with
+  // calibrated odometry: a look-alike one doorway over, 0.98 m from the graph, fitted at 5.9 cm
+  // and split the graph in two; the closures the logs need fit at 1.6-3.4 cm when they move it.)
+  float large_closure_max_residual_m = 0.04f;
   // A closure is kept only if, optimised with it, no edge's chi2 exceeds this (pose_graph.hpp).
   float max_edge_chi2 = 100.0f;
   PoseGraphConfig optimizer;

@@ -1,6 +1,7 @@
 #include "core/back_end/correlative_search.hpp"
 
 #include <cmath>
+#include <cstdlib>
 
 #include "core/base/assert.hpp"
 #include "core/grid/cell.hpp"
@@ -362,7 +363,12 @@ void CorrelativeSearchRun::Finish(const MatchGrid& grid, Span<const Point2> poin
                        NormalizeAngle(initial_.theta + best_.dtheta)};
   const bool strong = result_.score >= config.min_score;
   const bool unique = result_.second_score < config.max_second_ratio * result_.score;
-  result_.verdict = strong && unique ? Status::kOk : Status::kRejected;
+  // A best pose on the window's border is not a peak the search saw whole: the true one may lie
+  // outside, and what scored best is the nearest look-alike (a doorway one metre off).
+  const bool inside = (n_offsets_ == 0 || (std::abs(best_.ox) < n_offsets_ && std::abs(best_.oy) < n_offsets_)) &&
+                      (n_angles_ == 0 || std::fabs(best_.dtheta) < (static_cast<float>(n_angles_) - 0.5f) * step_);
+  result_.on_border = !inside;
+  result_.verdict = strong && unique && inside ? Status::kOk : Status::kRejected;
   phase_ = Phase::kDone;
 }
 

@@ -107,7 +107,8 @@ struct CorrelativeSearchResult {
   // below that, the best separate pose the sweep happened to score (0 if none).
   float second_score = 0.0f;
   std::uint32_t poses_evaluated = 0;
-  Status verdict = Status::kNotEnoughData;  // kOk, kRejected (weak or ambiguous), kNotEnoughData
+  bool on_border = false;    // the best pose lies on the window's border (then rejected)
+  Status verdict = Status::kNotEnoughData;  // kOk, kRejected (weak, ambiguous, on the border), kNotEnoughData
 };
 
 // A point of the rotated cloud in whole match cells of the grid (the search's scratch: half the

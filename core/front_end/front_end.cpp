@@ -533,7 +533,7 @@ void FrontEnd::EnterKnownRegion() {
   const Pose2 submap_before = submap_pose_;
   RegistrationResult result;
   int frame = -1;
-  const bool aligned = SecondRegistration(&result, &frame, loop);
+  bool aligned = SecondRegistration(&result, &frame, loop);
   if (!loop) {
     anchor_region_ = region;  // back after a short detour
     lost_in_region_ = false;
@@ -543,6 +543,16 @@ void FrontEnd::EnterKnownRegion() {
   // the drift may be past the PLICP basin: a search. Without either, the robot does not know
   // where it is in this map, and its scans stay out of it until a retry succeeds or it reaches a
   // new region.
+  // Only a small correction is trusted from PLICP alone (the search's base window); a larger
+  // one may be a neighbouring minimum (a wall one doorway over), and the search verifies it.
+  if (aligned && frame == region) {
+    const Pose2 correction = Between(regions_[region].anchor.Inverse() * submap_before, result.pose);
+    const BackEndConfig& b = config_.back_end;
+    if (std::hypot(correction.x, correction.y) > b.search_base_m || std::fabs(correction.theta) > b.search_base_rad) {
+      submap_pose_ = submap_before;
+      aligned = false;
+    }
+  }
   if (aligned && frame == region) {
     if (back_end_.AddClosure(regions_.maps(), region, anchor_region_, result, submap_before)) {
       submap_pose_ = regions_[region].anchor * result.pose;

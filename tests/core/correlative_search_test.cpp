@@ -156,3 +156,24 @@ TEST_CASE("Branch and bound scores the same best pose as scoring every pose") {
   const std::uint32_t lattice = static_cast<std::uint32_t>((2 * n_angles + 1) * (2 * n_offsets + 1) * (2 * n_offsets + 1));
   REQUIRE(r.poses_evaluated < lattice);
 }
+
+TEST_CASE("A best pose on the window's border is refused: the peak may lie outside") {
+  Setup s(Room());
+  const Pose2 truth{3.2f, 6.1f, 0.4f};
+  const auto cloud = Cloud(Room(), truth);
+  // The truth 0.8 m away in x, the window 0.6 m: the best the search can score is on its edge.
+  const Pose2 off_x{truth.x + 0.8f, truth.y, truth.theta};
+  const dpcr::CorrelativeSearchResult x = s.Search(cloud, off_x, 0.6f, 0.1f);
+  CHECK(x.on_border);
+  CHECK(x.verdict == dpcr::Status::kRejected);
+  // 0.3 rad off, a window of 0.2 rad.
+  const Pose2 off_theta{truth.x, truth.y, truth.theta - 0.3f};
+  const dpcr::CorrelativeSearchResult t = s.Search(cloud, off_theta, 0.5f, 0.2f);
+  CHECK(t.on_border);
+  CHECK(t.verdict == dpcr::Status::kRejected);
+  // The same offsets inside wider windows: found, and not on the border.
+  const dpcr::CorrelativeSearchResult wide = s.Search(cloud, Pose2{truth.x + 0.8f, truth.y, truth.theta - 0.3f}, 1.2f, 0.35f);
+  CHECK_FALSE(wide.on_border);
+  REQUIRE(wide.verdict == dpcr::Status::kOk);
+  CHECK(std::hypot(wide.pose.x - truth.x, wide.pose.y - truth.y) < 0.1f);
+}
