@@ -27,6 +27,19 @@ struct GridConfig {
   // docs/front-end-accuracy.md). The price: a wall or free space that has settled is not unlearnt
   // when furniture moves.
   bool settle_at_clamp = true;
+  // ...unless the scans keep contradicting it: a settled cell counts the scans that observed the
+  // opposite since one last agreed with it, and after this many learns again (0: never). A
+  // person who stood still, a door that opened, leave occupied cells that only such a count can
+  // clear; a drifted scan does not clear a wall this way, since the wall's own returns keep
+  // resetting the count (measured: docs/relocalisation.md, "A home that changes").
+  std::uint8_t unsettle_occupied_after = 50;
+  // The same for settled free cells that keep being hit (a door that closed, furniture moved in).
+  std::uint8_t unsettle_free_after = 0;
+  // Only a ray's cells farther than this before its return count against a settled occupied
+  // cell: a scan inserted a few centimetres off puts its misses just before the returns, on the
+  // wall it should have hit; a ray that crosses a cell and returns far behind it says the cell is
+  // empty.
+  float unsettle_miss_margin_m = 0.3f;
   // A ray to a return clears cells only up to this distance before the return. Range noise
   // (1-3.5 cm on an LD06-class lidar) puts some returns of a wall in front of it and some
   // behind: without the margin, the rays of the longer returns clear the cells the shorter ones
