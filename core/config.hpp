@@ -31,8 +31,11 @@ struct GridConfig {
   // opposite since one last agreed with it, and after this many learns again (0: never). A
   // person who stood still, a door that opened, leave occupied cells that only such a count can
   // clear; a drifted scan does not clear a wall this way, since the wall's own returns keep
-  // resetting the count (measured: docs/relocalisation.md, "A home that changes").
-  std::uint8_t unsettle_occupied_after = 50;
+  // resetting the count. Off by default: at 50 it unlearns the ghosts of people who stood (12
+  // cells -> 1 over ten runs) and of open doors, at an unchanged mean LocErr_ave without people,
+  // but it also unlearns cells a wall only partly covers, and ten save/load sessions drift a
+  // little more (measured: docs/relocalisation.md, "A home that changes").
+  std::uint8_t unsettle_occupied_after = 0;
   // The same for settled free cells that keep being hit (a door that closed, furniture moved in).
   std::uint8_t unsettle_free_after = 0;
   // Only a ray's cells farther than this before its return count against a settled occupied
