@@ -38,6 +38,34 @@ class MissBatch {
   std::size_t queued_ = 0;
 };
 
+// Returns nearer than this many cells are not screened: range noise does not carry them two
+// cells through a wall (LD06-class: 1 cm + 0.5 % of the range, 2 cm at 2 m = 40 cells of 5 cm),
+// and skipping them halves the screen's cost.
+constexpr float kScreenFromCells = 40.0f;
+
+// Whether hit p lies behind a settled occupied cell along its ray from `origin`: one of the cells
+// 2 to config.drop_hits_behind_settled_cells cells before it (the cell just before it is the
+// wall's own thickness). Settled: at the clamp, or counting contrary scans below it.
+bool BehindSettledWall(const TiledGrid& grid, Point2 origin, Point2 p, const GridConfig& config) {
+  // In cell units: the hit, and one cell's step back along the ray.
+  const float inv_res = 1.0f / config.resolution_m;
+  const float dx = p.x - origin.x, dy = p.y - origin.y;
+  const float d = std::sqrt(dx * dx + dy * dy);
+  const float d_cells = d * inv_res;
+  if (d_cells < kScreenFromCells) return false;
+  const float cx = p.x * inv_res, cy = p.y * inv_res, sx = dx / d, sy = dy / d;
+  const int band = grid.unsettle_occupied_after() > 1 ? grid.unsettle_occupied_after() - 1 : 0;
+  const int settled = config.clamp_max - band;
+  for (int k = 2; k <= config.drop_hits_behind_settled_cells; ++k) {
+    const float back = static_cast<float>(k);
+    if (grid.Get(CellIndex{FloorToInt(cx - back * sx), FloorToInt(cy - back * sy)}) >= settled) return true;
+  }
+  return false;
+}
+
+// Marks a dropped hit in the scratch cells: outside every grid's box.
+constexpr CellIndex kDroppedHit{INT32_MIN, INT32_MIN};
+
 }  // namespace
 
 InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hits, Span<const Point2> free_ends,
@@ -49,11 +77,18 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
 
   // 1. The hits, each distinct cell once. They are marked as updated in this scan, so no ray of
   // this scan can clear them (a miss would be skipped as a repeat).
-  for (std::size_t i = 0; i < hits.size(); ++i) scratch[i] = CellOf(hits[i].x, hits[i].y, res);
+  // Hits behind a settled wall are dropped (GridConfig::drop_hits_behind_settled_cells).
+  const bool screen = grid.settle_at_bounds() && config.drop_hits_behind_settled_cells > 1;
+  int dropped = 0;
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    const bool behind = screen && BehindSettledWall(grid, origin, hits[i], config);
+    scratch[i] = behind ? kDroppedHit : CellOf(hits[i].x, hits[i].y, res);
+    dropped += behind ? 1 : 0;
+  }
   const TiledGrid::SegmentStats h = grid.UpdateCells(Span<const CellIndex>(scratch.data(), hits.size()), config.hit_delta,
                                                      config.clamp_min, config.clamp_max, stamp);
   stats.hit_cells = h.applied;
-  stats.out_of_box += h.out_of_box;
+  stats.out_of_box += h.out_of_box - dropped;  // the dropped ones fell outside on purpose
   stats.dropped_pool_full += h.dropped_pool_full;
 
   // 2. Misses along every ray, each cell once. The box is convex and rays start inside it:
@@ -70,7 +105,9 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
   const float margin2 = config.hit_margin_m * config.hit_margin_m;
   // The cells a ray to hit p clears: from `start` (or miss_range_m before the hit) up to
   // hit_margin_m before it; none when the hit is within the margin.
-  for (const Point2& p : hits) {
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    if (scratch[i] == kDroppedHit) continue;
+    const Point2& p = hits[i];
     const float dx = p.x - origin.x, dy = p.y - origin.y;
     const float d2 = dx * dx + dy * dy;
     if (d2 <= margin2) continue;

@@ -26,28 +26,6 @@ CellBox TiledGrid::box() const {
                  CellIndex{(origin_tile_.x + tiles_x_) * kTileSide, (origin_tile_.y + tiles_y_) * kTileSide}};
 }
 
-int TiledGrid::SlotOf(CellIndex c, int* offset) const {
-  // Tiles are 32 cells: an arithmetic shift is the floor division (GCC and Clang shift signed
-  // integers arithmetically), and this is the hottest line of ray casting.
-  static_assert(kTileSide == 32, "shift and mask below assume 32-cell tiles");
-  const std::int32_t tx = (c.x >> 5) - origin_tile_.x;
-  const std::int32_t ty = (c.y >> 5) - origin_tile_.y;
-  if (static_cast<std::uint32_t>(tx) >= static_cast<std::uint32_t>(tiles_x_) ||
-      static_cast<std::uint32_t>(ty) >= static_cast<std::uint32_t>(tiles_y_)) {
-    return -1;
-  }
-  *offset = ((c.y & 31) << 5) | (c.x & 31);
-  return ty * tiles_x_ + tx;
-}
-
-std::int16_t TiledGrid::Get(CellIndex c) const {
-  int offset = 0;
-  const int slot = SlotOf(c, &offset);
-  if (slot < 0) return kUnknownCell;
-  const TileId id = index_[static_cast<std::size_t>(slot)];
-  return id == kNoTile ? kUnknownCell : (*pool_)[id].cells[offset];
-}
-
 Tile* TiledGrid::TileForWrite(int slot) {
   DPCR_ASSERT(pool_ != nullptr);
   TileId& id = index_[static_cast<std::size_t>(slot)];

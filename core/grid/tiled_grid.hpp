@@ -67,8 +67,15 @@ class TiledGrid {
   std::uint8_t unsettle_occupied_after() const { return unsettle_occupied_after_; }
   std::uint8_t unsettle_free_after() const { return unsettle_free_after_; }
 
-  // kUnknownCell outside the box or in a tile never written.
-  std::int16_t Get(CellIndex c) const;
+  // kUnknownCell outside the box or in a tile never written. Inline: insertion screens its hits
+  // with it (InsertRays).
+  std::int16_t Get(CellIndex c) const {
+    int offset = 0;
+    const int slot = SlotOf(c, &offset);
+    if (slot < 0) return kUnknownCell;
+    const TileId id = index_[static_cast<std::size_t>(slot)];
+    return id == kNoTile ? kUnknownCell : (*pool_)[id].cells[offset];
+  }
 
   // Adds `delta` clamped to [lo, hi] if the cell was not yet updated in scan `stamp`
   // (stamp 0 = no once-per-scan rule); a settled cell (see set_settle_at_bounds) keeps its value
@@ -119,7 +126,19 @@ class TiledGrid {
 
  private:
   // The tile slot of a cell, -1 outside the box; `offset` gets the cell's place in its tile.
-  int SlotOf(CellIndex c, int* offset) const;
+  int SlotOf(CellIndex c, int* offset) const {
+    // Tiles are 32 cells: an arithmetic shift is the floor division (GCC and Clang shift signed
+    // integers arithmetically), and this is the hottest line of ray casting.
+    static_assert(kTileSide == 32, "shift and mask below assume 32-cell tiles");
+    const std::int32_t tx = (c.x >> 5) - origin_tile_.x;
+    const std::int32_t ty = (c.y >> 5) - origin_tile_.y;
+    if (static_cast<std::uint32_t>(tx) >= static_cast<std::uint32_t>(tiles_x_) ||
+        static_cast<std::uint32_t>(ty) >= static_cast<std::uint32_t>(tiles_y_)) {
+      return -1;
+    }
+    *offset = ((c.y & 31) << 5) | (c.x & 31);
+    return ty * tiles_x_ + tx;
+  }
   Tile* TileForWrite(int slot);
   Learning LearningOf(std::int16_t delta, std::int16_t lo, std::int16_t hi, bool may_unsettle = true) const;
   // UpdateSegments with the stamp and settle rules fixed at compile time, and one segment with

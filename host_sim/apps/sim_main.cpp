@@ -55,6 +55,7 @@ struct Options {
   bool ideal_bus = false;           // --emit-device: no latency, jitter or drift on the CAN bus
   std::vector<int> unsettle_after;  // GridConfig::unsettle_occupied_after, unsettle_free_after (empty: the defaults)
   float unsettle_margin_m = -1.0f;  // GridConfig::unsettle_miss_margin_m (< 0: the default)
+  int drop_behind_cells = -1;       // GridConfig::drop_hits_behind_settled_cells (< 0: the default)
 };
 
 // First registrations during the robot's in-place spins (metrics.json "spins").
@@ -157,6 +158,7 @@ dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfi
     config.grid.unsettle_free_after = static_cast<std::uint8_t>(opt.unsettle_after[1]);
   }
   if (opt.unsettle_margin_m >= 0.0f) config.grid.unsettle_miss_margin_m = opt.unsettle_margin_m;
+  if (opt.drop_behind_cells >= 0) config.grid.drop_hits_behind_settled_cells = static_cast<std::uint8_t>(opt.drop_behind_cells);
   return config;
 }
 
@@ -322,6 +324,8 @@ int main(int argc, char** argv) {
       ->expected(2)->delimiter(',')->check(CLI::Range(0, 255));
   app.add_option("--unsettle-margin", opt.unsettle_margin_m, "only a ray's cells farther than this before its return count against "
                  "a settled occupied cell (metres; GridConfig::unsettle_miss_margin_m)")->check(CLI::Range(0.0, 100.0));
+  app.add_option("--drop-behind", opt.drop_behind_cells, "drop returns 2 to N cells behind a settled wall along their ray "
+                 "(range noise through the wall; GridConfig::drop_hits_behind_settled_cells, 0: none)")->check(CLI::Range(0, 255));
   CLI11_PARSE(app, argc, argv);
   opt.start_pose_given = app.count("--start-pose") > 0;
   if ((opt.localise_only || !opt.map_origin.empty()) && opt.load_map.empty()) {
