@@ -27,7 +27,11 @@ constexpr int kMaxIterations = 1000;
 bool GridOk(const GridConfig& g) {
   return AboveUpTo(g.resolution_m, 0.005f, 1.0f) && g.resolution_m < 1.0f && g.hit_delta > 0 && g.miss_delta < 0 &&
          g.clamp_max > g.hit_delta && g.clamp_min < g.miss_delta && g.clamp_min > kUnknownCell &&
-         In(g.hit_margin_m, 0.0f, 1.0f);
+         In(g.hit_margin_m, 0.0f, 1.0f) &&
+         // The count lives in the values next to a bound (TiledGrid::set_settle_rule): the bands
+         // must not meet 0.
+         g.unsettle_occupied_after < g.clamp_max && g.unsettle_free_after < -static_cast<int>(g.clamp_min) &&
+         In(g.unsettle_miss_margin_m, 0.0f, 100.0f);
 }
 
 bool LidarOk(const LidarConfig& l) {

@@ -38,7 +38,7 @@ RegionSet::Entry RegionSet::Enter(RegionKey key, Point2 centre) {
   // The anchor at the box centre: the region's square and its margin all round.
   const int half = r.grid->tiles_x() / 2;
   r.grid->set_resolution_m(grid_.resolution_m);
-  r.grid->set_settle_at_bounds(grid_.settle_at_clamp);
+  r.grid->set_settle_rule(grid_.settle_at_clamp, grid_.unsettle_occupied_after, grid_.unsettle_free_after);
   r.grid->Reset(CellIndex{-half, -half});
   previous_ = current_;
   current_ = size_++;
@@ -55,7 +55,7 @@ RegionalMap* RegionSet::Restore(RegionKey key, const Pose2& anchor, std::uint32_
   // The box as Enter places it: the anchor at its centre.
   const int half = r.grid->tiles_x() / 2;
   r.grid->set_resolution_m(grid_.resolution_m);
-  r.grid->set_settle_at_bounds(grid_.settle_at_clamp);
+  r.grid->set_settle_rule(grid_.settle_at_clamp, grid_.unsettle_occupied_after, grid_.unsettle_free_after);
   r.grid->Reset(CellIndex{-half, -half});
   return &r;
 }

@@ -5,6 +5,68 @@
 #include "core/base/assert.hpp"
 
 namespace dpcr {
+namespace {
+
+// Miss segments queued for the grid 16 at a time (two batches, strong and weak, fit the core's
+// 1 KiB stack budget), their stats added to the scan's; with `may_unsettle` false they cannot
+// unsettle a settled cell (TiledGrid::UpdateSegments).
+class MissBatch {
+ public:
+  MissBatch(TiledGrid& grid, const GridConfig& config, std::uint32_t stamp, bool may_unsettle, InsertionStats* stats)
+      : grid_(grid), config_(config), stamp_(stamp), may_unsettle_(may_unsettle), stats_(stats) {}
+  void Queue(CellIndex from, CellIndex to) {
+    segments_[queued_++] = CellSegment{from, to};
+    if (queued_ == kBatch) Flush();
+  }
+  void Flush() {
+    const TiledGrid::SegmentStats s = grid_.UpdateSegments(Span<const CellSegment>(segments_, queued_), config_.miss_delta,
+                                                           config_.clamp_min, config_.clamp_max, stamp_, may_unsettle_);
+    stats_->miss_cells += s.applied;
+    stats_->out_of_box += s.out_of_box;
+    stats_->dropped_pool_full += s.dropped_pool_full;
+    queued_ = 0;
+  }
+
+ private:
+  static constexpr std::size_t kBatch = 16;
+  TiledGrid& grid_;
+  const GridConfig& config_;
+  std::uint32_t stamp_;
+  bool may_unsettle_;
+  InsertionStats* stats_;
+  CellSegment segments_[kBatch];
+  std::size_t queued_ = 0;
+};
+
+// Returns nearer than this many cells are not screened: range noise does not carry them two
+// cells through a wall (LD06-class: 1 cm + 0.5 % of the range, 2 cm at 2 m = 40 cells of 5 cm),
+// and skipping them halves the screen's cost.
+constexpr float kScreenFromCells = 40.0f;
+
+// Whether hit p lies behind a settled occupied cell along its ray from `origin`: one of the cells
+// 2 to config.drop_hits_behind_settled_cells cells before it (the cell just before it is the
+// wall's own thickness). Settled: at the clamp, or counting contrary scans below it.
+bool BehindSettledWall(const TiledGrid& grid, Point2 origin, Point2 p, const GridConfig& config) {
+  // In cell units: the hit, and one cell's step back along the ray.
+  const float inv_res = 1.0f / config.resolution_m;
+  const float dx = p.x - origin.x, dy = p.y - origin.y;
+  const float d = std::sqrt(dx * dx + dy * dy);
+  const float d_cells = d * inv_res;
+  if (d_cells < kScreenFromCells) return false;
+  const float cx = p.x * inv_res, cy = p.y * inv_res, sx = dx / d, sy = dy / d;
+  const int band = grid.unsettle_occupied_after() > 1 ? grid.unsettle_occupied_after() - 1 : 0;
+  const int settled = config.clamp_max - band;
+  for (int k = 2; k <= config.drop_hits_behind_settled_cells; ++k) {
+    const float back = static_cast<float>(k);
+    if (grid.Get(CellIndex{FloorToInt(cx - back * sx), FloorToInt(cy - back * sy)}) >= settled) return true;
+  }
+  return false;
+}
+
+// Marks a dropped hit in the scratch cells: outside every grid's box.
+constexpr CellIndex kDroppedHit{INT32_MIN, INT32_MIN};
+
+}  // namespace
 
 InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hits, Span<const Point2> free_ends,
                           const GridConfig& config, std::uint32_t stamp, Span<CellIndex> scratch, float miss_range_m) {
@@ -15,37 +77,37 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
 
   // 1. The hits, each distinct cell once. They are marked as updated in this scan, so no ray of
   // this scan can clear them (a miss would be skipped as a repeat).
-  for (std::size_t i = 0; i < hits.size(); ++i) scratch[i] = CellOf(hits[i].x, hits[i].y, res);
+  // Hits behind a settled wall are dropped (GridConfig::drop_hits_behind_settled_cells).
+  const bool screen = grid.settle_at_bounds() && config.drop_hits_behind_settled_cells > 1;
+  int dropped = 0;
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    const bool behind = screen && BehindSettledWall(grid, origin, hits[i], config);
+    scratch[i] = behind ? kDroppedHit : CellOf(hits[i].x, hits[i].y, res);
+    dropped += behind ? 1 : 0;
+  }
   const TiledGrid::SegmentStats h = grid.UpdateCells(Span<const CellIndex>(scratch.data(), hits.size()), config.hit_delta,
                                                      config.clamp_min, config.clamp_max, stamp);
   stats.hit_cells = h.applied;
-  stats.out_of_box += h.out_of_box;
+  stats.out_of_box += h.out_of_box - dropped;  // the dropped ones fell outside on purpose
   stats.dropped_pool_full += h.dropped_pool_full;
 
   // 2. Misses along every ray, each cell once. The box is convex and rays start inside it:
   // a ray that leaves it never comes back, so tracing stops there (one out_of_box per ray).
   // Rays go to the grid in batches (the walk is set up once per batch, and the cells of a batch's
   // rays, a chain of square root and divisions each, are computed back to back).
-  constexpr std::size_t kBatch = 32;
-  CellSegment batch[kBatch];
-  std::size_t queued = 0;
-  const auto flush = [&]() {
-    const TiledGrid::SegmentStats s = grid.UpdateSegments(Span<const CellSegment>(batch, queued), config.miss_delta,
-                                                          config.clamp_min, config.clamp_max, stamp);
-    stats.miss_cells += s.applied;
-    stats.out_of_box += s.out_of_box;
-    stats.dropped_pool_full += s.dropped_pool_full;
-    queued = 0;
-  };
-  const auto queue = [&](CellIndex from, CellIndex to) {
-    batch[queued++] = CellSegment{from, to};
-    if (queued == kBatch) flush();
-  };
+  // On a grid whose settled walls can be unlearnt (TiledGrid::set_settle_rule), the last
+  // unsettle_miss_margin_m of each ray goes in a batch of its own that cannot unsettle them
+  // (GridConfig::unsettle_miss_margin_m).
+  MissBatch strong(grid, config, stamp, true, &stats), weak(grid, config, stamp, false, &stats);
+  const bool split = grid.settle_at_bounds() && grid.unsettle_occupied_after() > 0 &&
+                     config.unsettle_miss_margin_m > config.hit_margin_m;  // a ray clears nothing nearer anyway
   const float range2 = miss_range_m * miss_range_m;
   const float margin2 = config.hit_margin_m * config.hit_margin_m;
   // The cells a ray to hit p clears: from `start` (or miss_range_m before the hit) up to
   // hit_margin_m before it; none when the hit is within the margin.
-  for (const Point2& p : hits) {
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    if (scratch[i] == kDroppedHit) continue;
+    const Point2& p = hits[i];
     const float dx = p.x - origin.x, dy = p.y - origin.y;
     const float d2 = dx * dx + dy * dy;
     if (d2 <= margin2) continue;
@@ -53,16 +115,28 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
     const float end_k = 1.0f - config.hit_margin_m / d;
     const CellIndex to = config.hit_margin_m > 0.0f ? CellOf(origin.x + end_k * dx, origin.y + end_k * dy, res)
                                                     : CellOf(p.x, p.y, res);  // exactly the hit's cell
-    if (miss_range_m <= 0.0f || d2 <= range2) {
-      queue(start, to);
-    } else {
+    CellIndex from = start;
+    float from_d = d;  // how far before the hit the segment starts
+    if (miss_range_m > 0.0f && d2 > range2) {
       // Start miss_range_m before the hit (a cell of the full ray's neighbourhood, not always on it).
       const float k = 1.0f - miss_range_m / d;
-      queue(CellOf(origin.x + k * dx, origin.y + k * dy, res), to);
+      from = CellOf(origin.x + k * dx, origin.y + k * dy, res);
+      from_d = miss_range_m;
+    }
+    if (!split) {
+      strong.Queue(from, to);
+    } else if (from_d <= config.unsettle_miss_margin_m) {
+      weak.Queue(from, to);
+    } else {
+      const float k = 1.0f - config.unsettle_miss_margin_m / d;
+      const CellIndex mid = CellOf(origin.x + k * dx, origin.y + k * dy, res);
+      strong.Queue(from, mid);
+      weak.Queue(mid, to);
     }
   }
-  for (const Point2& p : free_ends) queue(start, CellOf(p.x, p.y, res));
-  flush();
+  for (const Point2& p : free_ends) strong.Queue(start, CellOf(p.x, p.y, res));
+  strong.Flush();
+  weak.Flush();
   return stats;
 }
 

@@ -26,28 +26,6 @@ CellBox TiledGrid::box() const {
                  CellIndex{(origin_tile_.x + tiles_x_) * kTileSide, (origin_tile_.y + tiles_y_) * kTileSide}};
 }
 
-int TiledGrid::SlotOf(CellIndex c, int* offset) const {
-  // Tiles are 32 cells: an arithmetic shift is the floor division (GCC and Clang shift signed
-  // integers arithmetically), and this is the hottest line of ray casting.
-  static_assert(kTileSide == 32, "shift and mask below assume 32-cell tiles");
-  const std::int32_t tx = (c.x >> 5) - origin_tile_.x;
-  const std::int32_t ty = (c.y >> 5) - origin_tile_.y;
-  if (static_cast<std::uint32_t>(tx) >= static_cast<std::uint32_t>(tiles_x_) ||
-      static_cast<std::uint32_t>(ty) >= static_cast<std::uint32_t>(tiles_y_)) {
-    return -1;
-  }
-  *offset = ((c.y & 31) << 5) | (c.x & 31);
-  return ty * tiles_x_ + tx;
-}
-
-std::int16_t TiledGrid::Get(CellIndex c) const {
-  int offset = 0;
-  const int slot = SlotOf(c, &offset);
-  if (slot < 0) return kUnknownCell;
-  const TileId id = index_[static_cast<std::size_t>(slot)];
-  return id == kNoTile ? kUnknownCell : (*pool_)[id].cells[offset];
-}
-
 Tile* TiledGrid::TileForWrite(int slot) {
   DPCR_ASSERT(pool_ != nullptr);
   TileId& id = index_[static_cast<std::size_t>(slot)];
@@ -82,42 +60,122 @@ bool MarkOnce(Tile* tile, int offset, std::uint32_t stamp) {
   return true;
 }
 
-// Adds a log-odds delta, clamped; an unknown cell starts from 0 (p = 0.5). With `settle`, a
-// cell already at a bound stays there.
-void ApplyDelta(std::int16_t* cell, std::int16_t delta, std::int16_t lo, std::int16_t hi, bool settle) {
-  if (settle && (*cell == lo || *cell == hi)) return;
-  int v = (*cell == kUnknownCell ? 0 : *cell) + delta;
-  v = v < lo ? lo : v;
-  v = v > hi ? hi : v;
+}  // namespace
+
+// An update's delta and bounds with the grid's settle rule, prepared once per batch.
+struct TiledGrid::Learning {
+  std::int32_t delta;
+  std::int32_t lo;
+  std::int32_t hi;
+  // The settled bands, [lo, lo_top] and [hi_bottom, hi] (a bound alone when its count is 0 or 1),
+  // and the counts of contrary scans that unsettle (0: never).
+  std::int32_t lo_top;
+  std::int32_t hi_bottom;
+  std::int32_t free_after;
+  std::int32_t occupied_after;
+  // Cells holding either value are left as they are: settled, and this update agrees with the
+  // bound or cannot unsettle it. The walk's first test (most visits of a regional map end there).
+  std::int32_t quiet_a;
+  std::int32_t quiet_b;
+};
+
+TiledGrid::Learning TiledGrid::LearningOf(std::int16_t delta, std::int16_t lo, std::int16_t hi, bool may_unsettle) const {
+  Learning l{};
+  l.delta = delta;
+  l.lo = lo;
+  l.hi = hi;
+  l.hi_bottom = hi - (unsettle_occupied_after_ > 1 ? unsettle_occupied_after_ - 1 : 0);
+  l.lo_top = lo + (unsettle_free_after_ > 1 ? unsettle_free_after_ - 1 : 0);
+  // Weak evidence: the bands as they are, but no count moves.
+  l.occupied_after = may_unsettle ? unsettle_occupied_after_ : 0;
+  l.free_after = may_unsettle ? unsettle_free_after_ : 0;
+  const bool up = delta >= 0;
+  l.quiet_a = up ? hi : lo;
+  const std::int32_t contrary_after = up ? l.free_after : l.occupied_after;
+  l.quiet_b = contrary_after == 0 ? (up ? lo : hi) : l.quiet_a;
+  return l;
+}
+
+namespace {
+
+// A learning cell's new value: settled at a bound it reaches (the clamp), kept out of the bands
+// otherwise (a value there would read as settled). Moved towards 0, out of the band: the cell
+// settles on the same update as it would without the bands (the next hit takes a value that
+// close to the bound over it), so settling keeps its pace.
+inline std::int32_t Learnt(std::int32_t v, const TiledGrid::Learning& l) {
+  if (v >= l.hi) return l.hi;
+  if (v <= l.lo) return l.lo;
+  if (v >= l.hi_bottom) return l.hi_bottom - 1;
+  if (v <= l.lo_top) return l.lo_top + 1;
+  return v;
+}
+
+// The settle rule (TiledGrid::set_settle_rule): a settled cell holds its bound minus (plus) the
+// contrary scans counted; an agreeing update restarts the count, the last contrary one makes the
+// cell learn again from the band's edge.
+inline std::int32_t SettledValue(std::int32_t old, const TiledGrid::Learning& l) {
+  if (old != kUnknownCell) {
+    if (old >= l.hi_bottom) {
+      if (l.delta >= 0) return l.hi;
+      if (l.occupied_after == 0) return old;
+      if (l.hi - old + 1 < l.occupied_after) return old - 1;
+      return Learnt(l.hi_bottom - 1 + l.delta, l);
+    }
+    if (old <= l.lo_top) {
+      if (l.delta <= 0) return l.lo;
+      if (l.free_after == 0) return old;
+      if (old - l.lo + 1 < l.free_after) return old + 1;
+      return Learnt(l.lo_top + 1 + l.delta, l);
+    }
+  }
+  return Learnt((old == kUnknownCell ? 0 : old) + l.delta, l);
+}
+
+// Adds a log-odds delta, clamped; an unknown cell starts from 0 (p = 0.5). With `settle`, the
+// settle rule.
+void ApplyDelta(std::int16_t* cell, const TiledGrid::Learning& l, bool settle) {
+  std::int32_t v;
+  if (settle) {
+    v = SettledValue(*cell, l);
+  } else {
+    v = (*cell == kUnknownCell ? 0 : *cell) + l.delta;
+    v = v < l.lo ? l.lo : v;
+    v = v > l.hi ? l.hi : v;
+  }
   *cell = static_cast<std::int16_t>(v);
 }
 
 
 // Updates cell `i` of a tile (row-major, 32 cells a row), once per scan when kStamped: bit i & 31
-// of updated[i >> 5] marks it. A settled cell is tested first and left unmarked: nothing in this
-// scan can change it, so a later visit that finds it unmarked skips it all the same (on the
-// regional maps most visits end here).
+// of updated[i >> 5] marks it. A quiet settled cell is tested first and left unmarked: nothing in
+// this scan can change it, so a later visit that finds it unmarked skips it all the same (on the
+// regional maps most visits end here). A settled cell that this update contradicts is marked: it
+// counts one contrary scan, not one per ray.
 template <bool kStamped, bool kSettle>
-inline void UpdateCell(Tile* tile, std::ptrdiff_t i, std::int32_t delta, std::int32_t lo, std::int32_t hi) {
+inline void UpdateCell(Tile* tile, std::ptrdiff_t i, const TiledGrid::Learning& l) {
   std::int16_t* cell = &tile->cells[i];
   const std::int32_t old = *cell;
-  if (kSettle && (old == lo || old == hi)) return;
+  if (kSettle && (old == l.quiet_a || old == l.quiet_b)) return;
   if (kStamped) {
     const std::uint32_t bit = 1u << (i & 31), word = tile->updated[i >> 5];
     if ((word & bit) != 0) return;
     tile->updated[i >> 5] = word | bit;
   }
-  std::int32_t v = (old == kUnknownCell ? 0 : old) + delta;
-  v = v < lo ? lo : v;
-  v = v > hi ? hi : v;
+  std::int32_t v;
+  if (kSettle) {
+    v = SettledValue(old, l);
+  } else {
+    v = (old == kUnknownCell ? 0 : old) + l.delta;
+    v = v < l.lo ? l.lo : v;
+    v = v > l.hi ? l.hi : v;
+  }
   *cell = static_cast<std::int16_t>(v);
 }
 
 }  // namespace
 
 template <bool kXMajor, int kMajorS, bool kStamped, bool kSettle>
-inline void TiledGrid::WalkSegment(CellSegment s, std::int32_t delta, std::int32_t lo, std::int32_t hi,
-                                   std::uint32_t stamp, SegmentStats* st) {
+inline void TiledGrid::WalkSegment(CellSegment s, const Learning& l, std::uint32_t stamp, SegmentStats* st) {
   // TraceCells' Bresenham walk (same cells, same order), cut into runs of cells in one tile: the
   // tile lookup, allocation and stamp check happen once per run, and inside a run the walk moves
   // the cell's index in the tile (+-1 along x, +-32 along y), which also names its "updated" bit.
@@ -164,7 +222,7 @@ inline void TiledGrid::WalkSegment(CellSegment s, std::int32_t delta, std::int32
     const std::int32_t n = left < to_edge ? left : to_edge;
     std::int32_t k = n;
     do {
-      if (tile != nullptr) UpdateCell<kStamped, kSettle>(tile, cell, delta, lo, hi);
+      if (tile != nullptr) UpdateCell<kStamped, kSettle>(tile, cell, l);
       cell += major_step;
       if (g > 0) {
         g += two_minor - two_major;
@@ -191,36 +249,35 @@ inline void TiledGrid::WalkSegment(CellSegment s, std::int32_t delta, std::int32
 }
 
 template <bool kStamped, bool kSettle>
-TiledGrid::SegmentStats TiledGrid::WalkSegments(Span<const CellSegment> segments, std::int32_t delta, std::int32_t lo,
-                                                std::int32_t hi, std::uint32_t stamp) {
+TiledGrid::SegmentStats TiledGrid::WalkSegments(Span<const CellSegment> segments, const Learning& l,
+                                                std::uint32_t stamp) {
   SegmentStats st;
   for (const CellSegment& s : segments) {
     const std::int32_t dx = s.to.x >= s.from.x ? s.to.x - s.from.x : s.from.x - s.to.x;
     const std::int32_t dy = s.to.y >= s.from.y ? s.to.y - s.from.y : s.from.y - s.to.y;
     if (dx >= dy) {
       if (s.to.x >= s.from.x) {
-        WalkSegment<true, 1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+        WalkSegment<true, 1, kStamped, kSettle>(s, l, stamp, &st);
       } else {
-        WalkSegment<true, -1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+        WalkSegment<true, -1, kStamped, kSettle>(s, l, stamp, &st);
       }
     } else if (s.to.y >= s.from.y) {
-      WalkSegment<false, 1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+      WalkSegment<false, 1, kStamped, kSettle>(s, l, stamp, &st);
     } else {
-      WalkSegment<false, -1, kStamped, kSettle>(s, delta, lo, hi, stamp, &st);
+      WalkSegment<false, -1, kStamped, kSettle>(s, l, stamp, &st);
     }
   }
   return st;
 }
 
 TiledGrid::SegmentStats TiledGrid::UpdateSegments(Span<const CellSegment> segments, std::int16_t delta, std::int16_t lo,
-                                                   std::int16_t hi, std::uint32_t stamp) {
+                                                   std::int16_t hi, std::uint32_t stamp, bool may_unsettle) {
   // The stamp and settle rules are fixed for the batch: the walk is chosen once.
+  const Learning l = LearningOf(delta, lo, hi, may_unsettle);
   if (stamp != 0) {
-    return settle_at_bounds_ ? WalkSegments<true, true>(segments, delta, lo, hi, stamp)
-                             : WalkSegments<true, false>(segments, delta, lo, hi, stamp);
+    return settle_at_bounds_ ? WalkSegments<true, true>(segments, l, stamp) : WalkSegments<true, false>(segments, l, stamp);
   }
-  return settle_at_bounds_ ? WalkSegments<false, true>(segments, delta, lo, hi, stamp)
-                           : WalkSegments<false, false>(segments, delta, lo, hi, stamp);
+  return settle_at_bounds_ ? WalkSegments<false, true>(segments, l, stamp) : WalkSegments<false, false>(segments, l, stamp);
 }
 
 TiledGrid::SegmentStats TiledGrid::UpdateSegment(CellIndex a, CellIndex b, std::int16_t delta, std::int16_t lo,
@@ -233,6 +290,7 @@ TiledGrid::SegmentStats TiledGrid::UpdateCells(Span<const CellIndex> cells, std:
                                                std::int16_t hi, std::uint32_t stamp) {
   // Update() per cell, with its lookups inlined and repeats not counted.
   DPCR_ASSERT(stamp != 0);
+  const Learning l = LearningOf(delta, lo, hi);
   SegmentStats st;
   for (const CellIndex c : cells) {
     int offset = 0;
@@ -245,7 +303,7 @@ TiledGrid::SegmentStats TiledGrid::UpdateCells(Span<const CellIndex> cells, std:
     if (tile == nullptr) {
       ++st.dropped_pool_full;
     } else if (MarkOnce(tile, offset, stamp)) {
-      ApplyDelta(&tile->cells[offset], delta, lo, hi, settle_at_bounds_);
+      ApplyDelta(&tile->cells[offset], l, settle_at_bounds_);
       ++st.applied;
     }
   }
@@ -260,7 +318,7 @@ Status TiledGrid::Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::
   Tile* tile = TileForWrite(slot);
   if (tile == nullptr) return Status::kPoolFull;
   // At most one update per cell per scan (stamp 0: no such rule); a repeat is legal and ignored.
-  if (stamp == 0 || MarkOnce(tile, offset, stamp)) ApplyDelta(&tile->cells[offset], delta, lo, hi, settle_at_bounds_);
+  if (stamp == 0 || MarkOnce(tile, offset, stamp)) ApplyDelta(&tile->cells[offset], LearningOf(delta, lo, hi), settle_at_bounds_);
   return Status::kOk;
 }
 

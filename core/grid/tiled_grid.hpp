@@ -50,12 +50,36 @@ class TiledGrid {
   // and the map would follow the drift it is meant to remove. Off by default.
   void set_settle_at_bounds(bool on) { settle_at_bounds_ = on; }
   bool settle_at_bounds() const { return settle_at_bounds_; }
+  // Settled cells that keep being contradicted learn again: a cell settled at the upper bound
+  // (occupied) that `occupied_after` scans in a row update downwards (no scan updating it upwards
+  // in between) leaves the bound and learns as any other cell; `free_after` likewise at the lower
+  // bound; 0 = settled for good. The count needs no storage: a settled cell with s contrary scans
+  // holds hi - s (lo + s), and a learning cell that would come within the count's band of a
+  // bound stays just outside it (at most occupied_after / 1024 nat lower; it still settles on the
+  // update that takes it over the bound, as without the band). The band stays above the
+  // reference thresholds, so a cell under contrary evidence keeps anchoring the robot until it
+  // leaves the bound. Needs set_settle_at_bounds(true).
+  void set_settle_rule(bool settle, std::uint8_t occupied_after, std::uint8_t free_after) {
+    settle_at_bounds_ = settle;
+    unsettle_occupied_after_ = occupied_after;
+    unsettle_free_after_ = free_after;
+  }
+  std::uint8_t unsettle_occupied_after() const { return unsettle_occupied_after_; }
+  std::uint8_t unsettle_free_after() const { return unsettle_free_after_; }
 
-  // kUnknownCell outside the box or in a tile never written.
-  std::int16_t Get(CellIndex c) const;
+  // kUnknownCell outside the box or in a tile never written. Inline: insertion screens its hits
+  // with it (InsertRays).
+  std::int16_t Get(CellIndex c) const {
+    int offset = 0;
+    const int slot = SlotOf(c, &offset);
+    if (slot < 0) return kUnknownCell;
+    const TileId id = index_[static_cast<std::size_t>(slot)];
+    return id == kNoTile ? kUnknownCell : (*pool_)[id].cells[offset];
+  }
 
   // Adds `delta` clamped to [lo, hi] if the cell was not yet updated in scan `stamp`
-  // (stamp 0 = no once-per-scan rule); a settled cell (see set_settle_at_bounds) keeps its value.
+  // (stamp 0 = no once-per-scan rule); a settled cell (see set_settle_at_bounds) keeps its value
+  // or counts a contrary scan (set_settle_rule).
   // kOutOfBounds outside the box, kPoolFull when the tile
   // cannot be allocated (the update is dropped), kOk otherwise (also when skipped as a repeat).
   Status Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::int16_t hi, std::uint32_t stamp);
@@ -73,9 +97,11 @@ class TiledGrid {
   SegmentStats UpdateSegment(CellIndex a, CellIndex b, std::int16_t delta, std::int16_t lo, std::int16_t hi,
                              std::uint32_t stamp);
   // UpdateSegment for each segment in turn, the stats summed. A scan's rays go in batches: the
-  // walk (stamp rule, settle rule) is chosen once per batch, not once per ray.
+  // walk (stamp rule, settle rule) is chosen once per batch, not once per ray. With
+  // `may_unsettle` false, a settled cell that the update contradicts is left as it is, its count
+  // too (weak evidence: the part of a ray just before its return, InsertRays).
   SegmentStats UpdateSegments(Span<const CellSegment> segments, std::int16_t delta, std::int16_t lo, std::int16_t hi,
-                              std::uint32_t stamp);
+                              std::uint32_t stamp, bool may_unsettle = true);
 
   // Update(c, delta, lo, hi, stamp) for each cell (stamp != 0), the stats summed: `applied`
   // counts the cells updated (not the repeats), the others the cells out of the box or lost to a
@@ -95,19 +121,33 @@ class TiledGrid {
   Span<std::int16_t> RestoreTile(int tx, int ty);
   const TilePool& pool() const { return *pool_; }
 
+  // One update's delta, bounds and settle rule, prepared once per batch (tiled_grid.cpp).
+  struct Learning;
+
  private:
   // The tile slot of a cell, -1 outside the box; `offset` gets the cell's place in its tile.
-  int SlotOf(CellIndex c, int* offset) const;
+  int SlotOf(CellIndex c, int* offset) const {
+    // Tiles are 32 cells: an arithmetic shift is the floor division (GCC and Clang shift signed
+    // integers arithmetically), and this is the hottest line of ray casting.
+    static_assert(kTileSide == 32, "shift and mask below assume 32-cell tiles");
+    const std::int32_t tx = (c.x >> 5) - origin_tile_.x;
+    const std::int32_t ty = (c.y >> 5) - origin_tile_.y;
+    if (static_cast<std::uint32_t>(tx) >= static_cast<std::uint32_t>(tiles_x_) ||
+        static_cast<std::uint32_t>(ty) >= static_cast<std::uint32_t>(tiles_y_)) {
+      return -1;
+    }
+    *offset = ((c.y & 31) << 5) | (c.x & 31);
+    return ty * tiles_x_ + tx;
+  }
   Tile* TileForWrite(int slot);
+  Learning LearningOf(std::int16_t delta, std::int16_t lo, std::int16_t hi, bool may_unsettle = true) const;
   // UpdateSegments with the stamp and settle rules fixed at compile time, and one segment with
   // its major axis (x when kXMajor) and that axis's direction (kMajorS, +-1) fixed too;
   // tiled_grid.cpp.
   template <bool kStamped, bool kSettle>
-  SegmentStats WalkSegments(Span<const CellSegment> segments, std::int32_t delta, std::int32_t lo, std::int32_t hi,
-                            std::uint32_t stamp);
+  SegmentStats WalkSegments(Span<const CellSegment> segments, const Learning& l, std::uint32_t stamp);
   template <bool kXMajor, int kMajorS, bool kStamped, bool kSettle>
-  void WalkSegment(CellSegment s, std::int32_t delta, std::int32_t lo, std::int32_t hi, std::uint32_t stamp,
-                   SegmentStats* st);
+  void WalkSegment(CellSegment s, const Learning& l, std::uint32_t stamp, SegmentStats* st);
 
   TilePool* pool_;
   Span<TileId> index_;
@@ -116,6 +156,8 @@ class TiledGrid {
   CellIndex origin_tile_;
   float resolution_m_ = 0.05f;
   bool settle_at_bounds_ = false;
+  std::uint8_t unsettle_occupied_after_ = 0;
+  std::uint8_t unsettle_free_after_ = 0;
   std::size_t allocated_tiles_ = 0;
 };
 

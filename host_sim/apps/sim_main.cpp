@@ -42,6 +42,7 @@ struct Options {
   bool localise_only = false;
   int kidnaps = 0;
   int people = 0;
+  bool doors = false;  // the world's doors with a leaf open and close
   double kidnap_from_min = 0.0;
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
   std::string scan_times;
@@ -52,6 +53,9 @@ struct Options {
   double lidar_min_hz = -1.0;       // the lowest revolution rate (-1: the lidar model's)
   double wheel_clock_ppm = 35.0;    // --emit-device: the wheel board's clock drift (DeviceFilesConfig)
   bool ideal_bus = false;           // --emit-device: no latency, jitter or drift on the CAN bus
+  std::vector<int> unsettle_after;  // GridConfig::unsettle_occupied_after, unsettle_free_after (empty: the defaults)
+  float unsettle_margin_m = -1.0f;  // GridConfig::unsettle_miss_margin_m (< 0: the default)
+  int drop_behind_cells = -1;       // GridConfig::drop_hits_behind_settled_cells (< 0: the default)
 };
 
 // First registrations during the robot's in-place spins (metrics.json "spins").
@@ -118,7 +122,8 @@ nlohmann::json InputMetrics(const Options& opt, const dpcr::sim::Simulation& sim
   const dpcr::sim::Pose2d& start = sim.start_pose();
   return {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed}, {"heading", opt.heading}, {"lidar", opt.lidar}, {"odometry", opt.odometry}, {"spins", opt.spins},
           {"plan", opt.fixed_plan ? "fixed" : "varied by the seed"}, {"start_pose_in_world", {start.x, start.y, start.theta}},
-          {"slip_events", sim.slip_events()}, {"people", opt.people}, {"kidnaps", opt.kidnaps}, {"coverage_tours", sim.tours_completed()}};
+          {"slip_events", sim.slip_events()}, {"people", opt.people},
+          {"doors", {{"moving", sim.doors().size()}, {"scheduled_changes", sim.doors().scheduled_changes()}}}, {"kidnaps", opt.kidnaps}, {"coverage_tours", sim.tours_completed()}};
 }
 
 // What to simulate: the options' seed, length, lidar (and its motor), spins, kidnaps and people.
@@ -133,7 +138,37 @@ dpcr::sim::SimConfig SimulationConfig(const Options& opt) {
   c.kidnaps.count = opt.kidnaps;
   c.kidnaps.from_min = opt.kidnap_from_min;
   c.people.count = opt.people;
+  c.doors.enabled = opt.doors;
   return c;
+}
+
+// The mapper's configuration for the options and the simulated sensors.
+dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfig& sim_config) {
+  dpcr::MapperConfig config;
+  config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
+  config.lidar.drop_isolated_returns = opt.lidar == "xv11";  // its junk readings
+  config.front_end.enable_registration = !opt.odometry_only;
+  config.back_end.enable = !opt.front_end_only;
+  config.front_end.gyro_heading = opt.heading == "gyro";
+  if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
+  config.localisation.unknown_start = !opt.load_map.empty() && !opt.start_pose_given;
+  config.localisation.localise_only = opt.localise_only;
+  if (!opt.unsettle_after.empty()) {
+    config.grid.unsettle_occupied_after = static_cast<std::uint8_t>(opt.unsettle_after[0]);
+    config.grid.unsettle_free_after = static_cast<std::uint8_t>(opt.unsettle_after[1]);
+  }
+  if (opt.unsettle_margin_m >= 0.0f) config.grid.unsettle_miss_margin_m = opt.unsettle_margin_m;
+  if (opt.drop_behind_cells >= 0) config.grid.drop_hits_behind_settled_cells = static_cast<std::uint8_t>(opt.drop_behind_cells);
+  return config;
+}
+
+// What changed in the home during the run, for map_check: the doors' leaves, where people stood.
+dpcr::apps::HomeChanges HomeChangesOf(const dpcr::sim::Simulation& sim, const dpcr::sim::SimConfig& sim_config) {
+  dpcr::apps::HomeChanges changes;
+  changes.door_leaves = sim.doors().leaves();
+  changes.standing_spots = sim.people().StandingSpots();
+  changes.person_radius_m = sim_config.people.radius_m;
+  return changes;
 }
 
 // The ground truth's frame to the map's: the robot's first pose is the map's origin (or, given,
@@ -165,15 +200,7 @@ int Run(const Options& opt) {
   const dpcr::sim::SimConfig sim_config = SimulationConfig(opt);
   dpcr::sim::Simulation sim(world, sim_config);
 
-  dpcr::MapperConfig config;
-  config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
-  config.lidar.drop_isolated_returns = opt.lidar == "xv11";  // its junk readings
-  config.front_end.enable_registration = !opt.odometry_only;
-  config.back_end.enable = !opt.front_end_only;
-  config.front_end.gyro_heading = opt.heading == "gyro";
-  if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
-  config.localisation.unknown_start = !opt.load_map.empty() && !opt.start_pose_given;
-  config.localisation.localise_only = opt.localise_only;
+  const dpcr::MapperConfig config = MapperConfigFor(opt, sim_config);
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));
   // A second session: the saved map, the robot at a known pose in its frame (the world's start
   // pose is the saved frame's origin when the map came from a run in the same world).
@@ -225,11 +252,12 @@ int Run(const Options& opt) {
   dpcr::output::FinalizeTrajectory(mapper, &run);
   nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
   metrics["input"] = InputMetrics(opt, sim);
+  metrics["input"]["unsettle_after"] = {config.grid.unsettle_occupied_after, config.grid.unsettle_free_after};
   AddRelocalisationFigures(opt, mapper, sim, run, recoveries, lost, align, &metrics);
   if (opt.spins > 0) metrics["spins"] = spins.Metrics();
   const dpcr::output::FusedMap fused = dpcr::output::RenderFused(mapper);
   const dpcr::sim::WorldRayCaster caster(world);
-  metrics["map_check"] = dpcr::apps::MapTruthCheck(fused, align.Inverse(), caster);
+  metrics["map_check"] = dpcr::apps::MapTruthCheck(fused, align.Inverse(), caster, HomeChangesOf(sim, sim_config));
   metrics = dpcr::output::WriteRunOutputs(opt.out, fused, run, metrics);
   if (!opt.save_map.empty()) dpcr::output::SaveMapFile(mapper, opt.save_map);
   dpcr::apps::WriteScanTimes(opt.scan_times, run);
@@ -272,6 +300,8 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--people", opt.people, "people walking through the home along the robot's tour (a home that changes)")
       ->check(CLI::NonNegativeNumber);
+  app.add_flag("--doors", opt.doors, "the world's doors with a leaf open and close on a schedule drawn from the seed (a home that "
+               "changes); a closed door opens for the robot within 1 m of it");
   app.add_option("--kidnap-from", opt.kidnap_from_min, "minute of the run from which kidnaps happen")->check(CLI::NonNegativeNumber);
   app.add_option("--save-map", opt.save_map, "save the map at the end (atomically), for --load-map and dpcr-map");
   app.add_option("--region-width", opt.region_width_m, "region width S in metres (default: the configuration's, 4 m)")
@@ -289,6 +319,13 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber)->capture_default_str();
   app.add_option("--lidar-min-hz", opt.lidar_min_hz, "the lowest revolution rate of a wandering lidar motor (default: the model's; "
                  "xv11 4.5 Hz, ld06 none)")->check(CLI::NonNegativeNumber);
+  app.add_option("--unsettle-after", opt.unsettle_after, "settled regional cells learn again after this many scans in a row "
+                 "contradict them: occupied,free (0: never; GridConfig::unsettle_occupied_after, unsettle_free_after)")
+      ->expected(2)->delimiter(',')->check(CLI::Range(0, 255));
+  app.add_option("--unsettle-margin", opt.unsettle_margin_m, "only a ray's cells farther than this before its return count against "
+                 "a settled occupied cell (metres; GridConfig::unsettle_miss_margin_m)")->check(CLI::Range(0.0, 100.0));
+  app.add_option("--drop-behind", opt.drop_behind_cells, "drop returns 2 to N cells behind a settled wall along their ray "
+                 "(range noise through the wall; GridConfig::drop_hits_behind_settled_cells, 0: none)")->check(CLI::Range(0, 255));
   CLI11_PARSE(app, argc, argv);
   opt.start_pose_given = app.count("--start-pose") > 0;
   if ((opt.localise_only || !opt.map_origin.empty()) && opt.load_map.empty()) {

@@ -55,7 +55,7 @@ World Office() {
   AddBox(&w, 0, 0, 21, 5);
   AddWall(&w, 7, 0, 7, 5);
   AddWall(&w, 14, 0, 14, 5);
-  w.doors = {{{7, 2.0}, {7, 2.9}}, {{14, 3.2}, {14, 4.1}}};
+  w.doors = {{{7, 2.0}, {7, 2.9}, true}, {{14, 3.2}, {14, 4.1}, true}};  // both with a leaf (--doors)
   // Room 1: two desks with chairs, a filing cabinet.
   AddLegs(&w, 2.5, 1.2, 1.6, 0.8, kLegRadius);
   AddChair(&w, 2.5, 2.0);
@@ -103,12 +103,13 @@ World Apartment() {
   AddWall(&w, 6, 1.4, 6, 9);      // living + bathroom / hallway
   AddWall(&w, 7.3, 1.4, 7.3, 9);  // hallway / bedrooms
   AddWall(&w, 7.3, 5, 12, 5);     // bedroom 1 / bedroom 2
-  w.doors = {{{2.0, 1.4}, {3.6, 1.4}},   // balcony sliding door
-             {{1.0, 6.0}, {1.9, 6.0}},   // kitchen
-             {{6.0, 3.4}, {6.0, 4.5}},   // living to hallway
-             {{6.0, 7.0}, {6.0, 7.8}},   // bathroom
-             {{7.3, 3.8}, {7.3, 4.6}},   // bedroom 1
-             {{7.3, 6.5}, {7.3, 7.3}}};  // bedroom 2
+  // The four room doors have a leaf (dpcr-sim --doors opens and closes them).
+  w.doors = {{{2.0, 1.4}, {3.6, 1.4}, false},  // balcony sliding door
+             {{1.0, 6.0}, {1.9, 6.0}, true},   // kitchen
+             {{6.0, 3.4}, {6.0, 4.5}, false},  // living to hallway (an open arch)
+             {{6.0, 7.0}, {6.0, 7.8}, true},   // bathroom
+             {{7.3, 3.8}, {7.3, 4.6}, true},   // bedroom 1
+             {{7.3, 6.5}, {7.3, 7.3}, true}};  // bedroom 2
   // Living room: TV cabinet, sofa, five-legged coffee table, armchair legs.
   AddBox(&w, 0.0, 2.8, 0.45, 4.6);
   AddBox(&w, 4.1, 2.4, 5.0, 5.0);

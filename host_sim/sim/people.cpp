@@ -41,6 +41,18 @@ Vec2 People::PositionAt(std::size_t person, double t_s) const {
   return s.a + u * (s.b - s.a);
 }
 
+std::vector<Vec2> People::StandingSpots() const {
+  std::vector<Vec2> spots;
+  for (const std::vector<Stretch>& walk : walks_) {
+    for (const Stretch& s : walk) {
+      if (s.t1 <= s.t0 || Norm(s.b - s.a) > 0.0) continue;
+      const bool known = std::any_of(spots.begin(), spots.end(), [&](Vec2 p) { return Norm(p - s.a) < 1e-9; });
+      if (!known) spots.push_back(s.a);
+    }
+  }
+  return spots;
+}
+
 double People::Cast(Vec2 origin, double angle_rad, double t_s, double max_range_m) const {
   const Vec2 dir{std::cos(angle_rad), std::sin(angle_rad)};
   double best = -1.0;

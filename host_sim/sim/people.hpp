@@ -31,6 +31,9 @@ class People {
   double Cast(Vec2 origin, double angle_rad, double t_s, double max_range_m) const;
   Vec2 PositionAt(std::size_t person, double t_s) const;
   std::size_t size() const { return walks_.size(); }
+  // Where someone stood still at some time (each place once).
+  std::vector<Vec2> StandingSpots() const;
+  double radius_m() const { return radius_m_; }
 
  private:
   // One straight stretch: from `a` at t0 to `b` at t1 (a == b: standing).

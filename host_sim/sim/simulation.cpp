@@ -11,6 +11,7 @@ constexpr std::uint64_t kPlanStream = 0x165667B19E3779F9ull;
 constexpr std::uint64_t kRateStream = 0x27D4EB2F165667C5ull;
 constexpr std::uint64_t kKidnapStream = 0x165667B19E3779F9ull;
 constexpr std::uint64_t kPeopleStream = 0x85EBCA77C2B2AE63ull;
+constexpr std::uint64_t kDoorStream = 0x94D049BB133111EBull;
 
 // A start pose drawn from the seed: a random waypoint of the canonical plan (so reachable from
 // everywhere the plan goes, never inside a closed cabinet), facing anywhere.
@@ -67,6 +68,8 @@ Simulation::Simulation(const World& world, const SimConfig& config)
   pose_ = follower_->pose();
   ScheduleKidnaps();
   people_ = People(config.people, plan_.waypoints, config.seed ^ kPeopleStream, static_cast<double>(end_us_) * 1e-6);
+  doors_ = Doors(config.doors, world_, config.seed ^ kDoorStream, static_cast<double>(end_us_) * 1e-6);
+  door_rng_.seed(config.seed ^ kDoorStream ^ kLidarStream);
 }
 
 void Simulation::ScheduleKidnaps() {
@@ -183,6 +186,16 @@ bool Simulation::Step(SimEvent* out) {
       // A person in front of the wall: the beam returns from their legs.
       const double d = people_.Cast(Vec2{sensor.x, sensor.y}, sensor.theta + angle, static_cast<double>(beam_us) * 1e-6, lidar.max_range_m);
       if (d >= lidar.min_range_m && (beam.range_m <= 0.0f || d < static_cast<double>(beam.range_m))) beam.range_m = static_cast<float>(d);
+    }
+    if (doors_.size() > 0) {
+      // A closed door in front of what the beam reached: it returns from the door, with the
+      // lidar's range noise (its own stream: the other beams' draws do not move).
+      const double d = doors_.Cast(Vec2{sensor.x, sensor.y}, sensor.theta + angle, static_cast<double>(beam_us) * 1e-6,
+                                   Vec2{pose_.x, pose_.y}, lidar.max_range_m);
+      if (d >= lidar.min_range_m && (beam.range_m <= 0.0f || d < static_cast<double>(beam.range_m))) {
+        const double r = d + std::normal_distribution<double>(0.0, 1.0)(door_rng_) * (lidar.noise_base_m + lidar.noise_fraction * d);
+        beam.range_m = r >= lidar.min_range_m && r <= lidar.max_range_m ? static_cast<float>(r) : 0.0f;
+      }
     }
     if (lidar.invalid_probability > 0.0 || lidar.junk_probability > 0.0 || lidar.spin_up_valid_probability < 1.0) {
       beam.range_m = DegradeBeam(beam.range_m, lidar, next_beam_ <= n, &lidar_rng_);

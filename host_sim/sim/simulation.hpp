@@ -12,6 +12,7 @@
 #include "core/config.hpp"
 #include "core/geometry/scan.hpp"
 #include "host_sim/sim/coverage_planner.hpp"
+#include "host_sim/sim/doors.hpp"
 #include "host_sim/sim/motion.hpp"
 #include "host_sim/sim/people.hpp"
 #include "host_sim/sim/sensors.hpp"
@@ -49,6 +50,7 @@ struct SimConfig {
   OdometryConfig odometry;
   KidnapConfig kidnaps;
   PeopleConfig people;  // people walking through the home, seen by the lidar
+  DoorsConfig doors;    // doors that open and close (the world's doors with a leaf)
 };
 
 using SimScan = Scan<VacuumProfile::kMaxBeams>;
@@ -92,6 +94,9 @@ class Simulation {
   const Pose2d& current_pose() const { return pose_; }
   // The kidnaps so far (those whose carry has begun; down_us is 0 until put down).
   const std::vector<KidnapEvent>& kidnaps() const { return kidnaps_; }
+  // The people walking and the doors opening and closing (both empty unless configured).
+  const People& people() const { return people_; }
+  const Doors& doors() const { return doors_; }
 
  private:
   // The time of beam `i` of the current revolution.
@@ -115,6 +120,8 @@ class Simulation {
   double carried_s_ = 0.0;  // time spent carried so far (the plan's clock stood still)
   Pose2d pose_;             // the robot's true pose now
   People people_;
+  Doors doors_;
+  std::mt19937_64 door_rng_;  // the range noise of returns from doors
 
   SimConfig config_;
   World world_;  // a copy: the caster points into it, so temporaries are safe to pass

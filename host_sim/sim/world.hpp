@@ -38,10 +38,12 @@ struct Room {
   bool Contains(Vec2 p) const { return p.x >= xmin && p.x <= xmax && p.y >= ymin && p.y <= ymax; }
 };
 
-// An opening: the part of any wall lying along [a, b] is removed by CutDoors().
+// An opening: the part of any wall lying along [a, b] is removed by CutDoors(). With a leaf, a
+// door closes it now and then (host_sim/sim/doors.hpp, dpcr-sim --doors).
 struct Door {
   Vec2 a;
   Vec2 b;
+  bool leaf = false;
 };
 
 // Thrown for malformed world files and unknown world names; what() starts with "file:line:".

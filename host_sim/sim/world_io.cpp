@@ -40,7 +40,7 @@ constexpr Keyword kKeywords[] = {
     {"box", 4, 5, "box <xmin> <ymin> <xmax> <ymax> [material]"},
     {"circle", 3, 4, "circle <x> <y> <radius> [material]"},
     {"room", 5, 5, "room <name> <xmin> <ymin> <xmax> <ymax>"},
-    {"door", 4, 4, "door <x1> <y1> <x2> <y2>"},
+    {"door", 4, 5, "door <x1> <y1> <x2> <y2> [leaf]"},
     {"start", 3, 3, "start <x> <y> <theta-rad>"},
 };
 
@@ -220,8 +220,12 @@ World ParseWorldText(const std::string& text, const std::string& source_name) {
       }
       world.rooms.push_back(room);
     } else if (key == "door") {
-      const Door door{Vec2{num(1), num(2)}, Vec2{num(3), num(4)}};
+      Door door{Vec2{num(1), num(2)}, Vec2{num(3), num(4)}};
       if (Norm(door.b - door.a) < 1e-6) Fail(source_name, line_no, "door has zero width");
+      if (t.size() > 5) {
+        if (t[5] != "leaf") Fail(source_name, line_no, "door takes only 'leaf' after its end points, not '" + t[5] + "'");
+        door.leaf = true;
+      }
       world.doors.push_back(door);
     } else if (key == "start") {
       world.start = Pose2d{num(1), num(2), WrapAngle(num(3))};

@@ -126,6 +126,7 @@ std::vector<BadField> BadFields() {
       INT16_FIELD(grid.clamp_max, 0, -1, 800),  // at or below hit_delta
       INT16_FIELD(grid.clamp_min, 0, 1, -32768),  // -32768 is the unknown cell
       FLOAT_FIELD(grid.hit_margin_m, kNonNegative),
+      FLOAT_FIELD(grid.unsettle_miss_margin_m, kNonNegative),
       FLOAT_FIELD(lidar.min_range_m, kNonNegative),
       FLOAT_FIELD(lidar.max_range_m, kPositive),
       FLOAT_FIELD(lidar.no_return_free_m, kNonNegative),

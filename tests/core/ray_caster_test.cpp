@@ -114,3 +114,46 @@ TEST_CASE("A ray clears nothing within the hit margin before its return") {
   REQUIRE(near.hit_cells == 1);
   REQUIRE(near.miss_cells == 0);
 }
+
+TEST_CASE("A return behind a settled wall along its ray is dropped with its ray; one at the wall is kept") {
+  Fixture f;
+  f.grid->set_settle_at_bounds(true);
+  f.config.drop_hits_behind_settled_cells = 5;
+  const Point2 origin{0.025f, 0.025f};
+  std::uint32_t stamp = 1;
+  // Settle the wall cell (50, 0), 2.5 m away (nearer returns are not screened).
+  for (int i = 0; i < 5; ++i) f.Insert(origin, {Point2{2.525f, 0.025f}}, stamp++);
+  REQUIRE(f.grid->Get(CellIndex{50, 0}) == f.config.clamp_max);
+  // Three cells behind it: range noise through the wall, dropped (no hit, no misses, no out-of-box).
+  const auto behind = f.Insert(origin, {Point2{2.675f, 0.025f}}, stamp++);
+  CHECK(behind.hit_cells == 0);
+  CHECK(behind.miss_cells == 0);
+  CHECK(behind.out_of_box == 0);
+  CHECK(f.grid->Get(CellIndex{53, 0}) == dpcr::kUnknownCell);
+  CHECK(f.grid->Get(CellIndex{52, 0}) == dpcr::kUnknownCell);
+  // The cell just behind the wall's cell is the wall's own thickness: kept.
+  CHECK(f.Insert(origin, {Point2{2.575f, 0.025f}}, stamp++).hit_cells == 1);
+  CHECK(f.grid->Get(CellIndex{51, 0}) == f.config.hit_delta);
+  // Farther behind than the screen looks: kept (something seen past a wall's end).
+  CHECK(f.Insert(origin, {Point2{2.875f, 0.025f}}, stamp++).hit_cells == 1);
+  // Screen off: kept.
+  f.config.drop_hits_behind_settled_cells = 0;
+  CHECK(f.Insert(origin, {Point2{2.675f, 0.025f}}, stamp++).hit_cells == 1);
+  CHECK(f.grid->Get(CellIndex{53, 0}) > 0);
+  // Nearer than 2 m (40 cells) the noise cannot carry a return through a wall: not screened.
+  Fixture near;
+  near.grid->set_settle_at_bounds(true);
+  near.config.drop_hits_behind_settled_cells = 5;
+  for (std::uint32_t i = 1; i <= 5; ++i) near.Insert(origin, {Point2{1.025f, 0.025f}}, i);
+  REQUIRE(near.grid->Get(CellIndex{20, 0}) == near.config.clamp_max);
+  CHECK(near.Insert(origin, {Point2{1.175f, 0.025f}}, 6).hit_cells == 1);
+}
+
+TEST_CASE("A grid that does not settle (the submap) drops no return behind its walls") {
+  Fixture f;
+  f.config.drop_hits_behind_settled_cells = 5;
+  const Point2 origin{0.025f, 0.025f};
+  for (std::uint32_t stamp = 1; stamp <= 6; ++stamp) f.Insert(origin, {Point2{2.525f, 0.025f}}, stamp);
+  REQUIRE(f.grid->Get(CellIndex{50, 0}) == f.config.clamp_max);
+  CHECK(f.Insert(origin, {Point2{2.675f, 0.025f}}, 7).hit_cells == 1);
+}

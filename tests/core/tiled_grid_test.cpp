@@ -119,6 +119,100 @@ TEST_CASE("Settled cells keep their value once they reach a bound") {
   REQUIRE(grid.Get(CellIndex{8, 5}) == dpcr::kUnknownCell);  // the segment's end is excluded
 }
 
+TEST_CASE("Settled cells learn again after enough contrary scans in a row") {
+  auto pool = std::make_unique<dpcr::TilePoolStorage<2>>();
+  dpcr::TiledGridStorage<2, 2> grid(pool.get());
+  grid.set_settle_rule(true, 3, 2);  // occupied: 3 contrary scans, free: 2
+  const CellIndex wall{3, 5}, floor{4, 5}, near{3, 20};
+  for (std::uint32_t scan = 1; scan <= 4; ++scan) REQUIRE(grid.Update(wall, 300, -1000, 1000, scan) == Status::kOk);
+  REQUIRE(grid.Get(wall) == 1000);
+  REQUIRE(grid.Update(wall, -400, -1000, 1000, 5) == Status::kOk);
+  REQUIRE(grid.Get(wall) == 999);  // settled, one contrary scan counted
+  REQUIRE(grid.Update(wall, -400, -1000, 1000, 6) == Status::kOk);
+  REQUIRE(grid.Get(wall) == 998);
+  REQUIRE(grid.Update(wall, 300, -1000, 1000, 7) == Status::kOk);
+  REQUIRE(grid.Get(wall) == 1000);  // a hit restarts the count
+  REQUIRE(grid.Update(wall, -400, -1000, 1000, 8) == Status::kOk);
+  REQUIRE(grid.Update(wall, -400, -1000, 1000, 9) == Status::kOk);
+  REQUIRE(grid.Update(wall, -400, -1000, 1000, 9) == Status::kOk);  // the same scan counts once
+  REQUIRE(grid.Get(wall) == 998);
+  REQUIRE(grid.Update(wall, -400, -1000, 1000, 10) == Status::kOk);
+  REQUIRE(grid.Get(wall) == 997 - 400);  // the third: learning again, from the band's edge
+  REQUIRE(grid.Update(wall, -400, -1000, 1000, 11) == Status::kOk);
+  REQUIRE(grid.Get(wall) == 197);
+
+  // Free space: two scans that hit it in a row, along segments as a scan's rays go.
+  for (std::uint32_t scan = 12; scan <= 14; ++scan) static_cast<void>(grid.UpdateSegment(floor, CellIndex{8, 5}, -400, -1000, 1000, scan));
+  REQUIRE(grid.Get(floor) == -1000);
+  static_cast<void>(grid.UpdateSegment(floor, CellIndex{8, 5}, 300, -1000, 1000, 15));
+  REQUIRE(grid.Get(floor) == -999);
+  static_cast<void>(grid.UpdateSegment(floor, CellIndex{8, 5}, -400, -1000, 1000, 16));
+  REQUIRE(grid.Get(floor) == -1000);  // a miss restarts the count
+  static_cast<void>(grid.UpdateSegment(floor, CellIndex{8, 5}, 300, -1000, 1000, 17));
+  static_cast<void>(grid.UpdateSegment(floor, CellIndex{8, 5}, 300, -1000, 1000, 18));
+  REQUIRE(grid.Get(floor) == -998 + 300);
+
+  // A learning cell stays out of a count's band (its values always mean "settled, so many
+  // contrary scans"), and settles on the update that takes it over the bound.
+  REQUIRE(grid.Update(near, 499, -1000, 1000, 19) == Status::kOk);
+  REQUIRE(grid.Update(near, 499, -1000, 1000, 20) == Status::kOk);
+  REQUIRE(grid.Get(near) == 997);  // 998 is in the band [998, 1000]
+  REQUIRE(grid.Update(near, 2, -1000, 1000, 21) == Status::kOk);
+  REQUIRE(grid.Get(near) == 997);  // 999, still below the bound: out of the band again
+  REQUIRE(grid.Update(near, 3, -1000, 1000, 22) == Status::kOk);
+  REQUIRE(grid.Get(near) == 1000);  // over it: settled
+
+  // Count 0: settled for good (the rule of set_settle_at_bounds).
+  grid.set_settle_rule(true, 0, 0);
+  for (std::uint32_t scan = 23; scan <= 32; ++scan) REQUIRE(grid.Update(near, -400, -1000, 1000, scan) == Status::kOk);
+  REQUIRE(grid.Get(near) == 1000);
+}
+
+TEST_CASE("Settle rule: UpdateSegments and UpdateCells equal per-cell Update (one direction per scan)") {
+  // As a scan goes in: the hits (one direction), then the misses (the other), each cell once.
+  const int occupied_after = GENERATE(1, 4, 12), free_after = GENERATE(0, 3);
+  TwinGrids twins(true);
+  dpcr::TiledGrid& fast = twins.a;
+  dpcr::TiledGrid& slow = twins.b;
+  for (dpcr::TiledGrid* g : {&fast, &slow}) {
+    g->set_settle_rule(true, static_cast<std::uint8_t>(occupied_after), static_cast<std::uint8_t>(free_after));
+  }
+  Lcg next{4242};
+  dpcr::CellSegment segments[24];
+  CellIndex cells[24];
+  int unsettled = 0;
+  for (std::uint32_t scan = 1; scan <= 1500; ++scan) {
+    const std::size_t n = static_cast<std::size_t>(next(1, 24));
+    for (std::size_t i = 0; i < n; ++i) {
+      // Short segments in a small area: cells settle, then get contradicted.
+      const CellIndex a{next(-20, 20), next(-20, 20)};
+      segments[i] = dpcr::CellSegment{a, CellIndex{a.x + next(-12, 12), a.y + next(-12, 12)}};
+      cells[i] = CellIndex{next(-20, 20), next(-20, 20)};
+    }
+    const std::int16_t hit = static_cast<std::int16_t>(next(200, 900)), miss = static_cast<std::int16_t>(-next(200, 900));
+    // Half the scans reversed: the cells wander to both bounds and away again.
+    const bool reversed = next(0, 1) == 1;
+    const std::int16_t hit_dir = reversed ? miss : hit, miss_dir = reversed ? hit : miss;
+    fast.UpdateCells(dpcr::Span<const CellIndex>(cells, n), hit_dir, -3000, 3000, scan);
+    for (std::size_t i = 0; i < n; ++i) REQUIRE(slow.Update(cells[i], hit_dir, -3000, 3000, scan) == Status::kOk);
+    fast.UpdateSegments(dpcr::Span<const dpcr::CellSegment>(segments, n), miss_dir, -3000, 3000, scan);
+    for (std::size_t i = 0; i < n; ++i) {
+      dpcr::TraceCells(segments[i].from, segments[i].to, [&](CellIndex c) {
+        const std::int16_t before = slow.Get(c);
+        REQUIRE(slow.Update(c, miss_dir, -3000, 3000, scan) == Status::kOk);
+        const std::int16_t after = slow.Get(c);
+        const int band_bottom = 3000 - (occupied_after > 1 ? occupied_after - 1 : 0);
+        unsettled += (before >= band_bottom && after < band_bottom && miss_dir < 0) ? 1 : 0;
+        return true;
+      });
+    }
+  }
+  for (int y = -64; y < 64; ++y) {
+    for (int x = -64; x < 64; ++x) REQUIRE(fast.Get(CellIndex{x, y}) == slow.Get(CellIndex{x, y}));
+  }
+  REQUIRE(unsettled > 0);  // settled cells were unsettled
+}
+
 TEST_CASE("A full tile pool drops the update and says so") {
   auto pool = std::make_unique<dpcr::TilePoolStorage<1>>();
   dpcr::TiledGridStorage<2, 2> grid(pool.get());
