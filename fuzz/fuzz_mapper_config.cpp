@@ -51,6 +51,9 @@ class Mutator {
   }
   void operator()(int& v, std::uint8_t choice) { Integer(v, choice); }
   void operator()(std::int16_t& v, std::uint8_t choice) { Integer(v, choice); }
+  void operator()(std::uint8_t& v, std::uint8_t choice) {  // counts: 0 (off), the largest, any
+    v = choice % 3 == 0 ? 0 : choice % 3 == 1 ? std::numeric_limits<std::uint8_t>::max() : in_.ConsumeIntegral<std::uint8_t>();
+  }
   void operator()(bool& v, std::uint8_t) { v = !v; }
 
  private:
@@ -60,7 +63,7 @@ class Mutator {
 // Every field of the configuration, by address, in a fixed order.
 class FieldList {
  public:
-  using Field = std::variant<float*, int*, std::int16_t*, bool*>;
+  using Field = std::variant<float*, int*, std::int16_t*, std::uint8_t*, bool*>;
   template <class T>
   void operator()(T& field) {
     fields_.push_back(Field(&field));
@@ -100,6 +103,7 @@ template <class M>
 void ForEachField(M& m, dpcr::MapperConfig& c) {
   dpcr::GridConfig& g = c.grid;
   m(g.resolution_m), m(g.hit_delta), m(g.miss_delta), m(g.clamp_max), m(g.clamp_min), m(g.settle_at_clamp), m(g.hit_margin_m);
+  m(g.unsettle_occupied_after), m(g.unsettle_free_after), m(g.drop_hits_behind_settled_cells), m(g.unsettle_miss_margin_m);
   dpcr::LidarConfig& l = c.lidar;
   m(l.min_range_m), m(l.max_range_m), m(l.no_return_free_m), m(l.mount), m(l.drop_isolated_returns);
   dpcr::FrontEndConfig& f = c.front_end;
