@@ -230,12 +230,7 @@ LoopClosureResult BackEnd::FinishLoopClosure(Span<RegionalMap> regions, Span<con
   trace_.mean_residual_m = r.mean_residual_m;
   // Refined from the guess (no clear peak): only a small correction is trusted, as on loop entry;
   // PLICP from a guess metres or degrees off finds the nearest look-alike as readily as the map.
-  bool verified = true;
-  if (found.verdict != Status::kOk) {
-    const Pose2 correction = Between(start, r.pose);
-    verified = std::hypot(correction.x, correction.y) <= config_.search_base_m &&
-               std::fabs(correction.theta) <= config_.search_base_rad;
-  }
+  const bool verified = found.verdict == Status::kOk || WithinSearchBaseWindow(config_, Between(start, r.pose));
   if (r.verdict != Status::kOk || !verified) {
     ++counters_.loop_closures_rejected;
     out.verdict = Status::kRejected;
@@ -271,8 +266,7 @@ bool BackEnd::AddClosure(Span<RegionalMap> regions, int region, int from, const 
   // closely as a first registration does (a look-alike one doorway over fitted at 6 cm).
   const Pose2 change = Between(Between(regions[static_cast<std::size_t>(region)].anchor,
                                        regions[static_cast<std::size_t>(from)].anchor), z);
-  if ((std::hypot(change.x, change.y) > config_.search_base_m || std::fabs(change.theta) > config_.search_base_rad) &&
-      r.mean_residual_m > config_.large_closure_max_residual_m) {
+  if (!WithinSearchBaseWindow(config_, change) && r.mean_residual_m > config_.large_closure_max_residual_m) {
     ++counters_.loop_closures_rejected;
     return false;
   }

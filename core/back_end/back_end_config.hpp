@@ -1,6 +1,8 @@
 // The back end's parameters (core/back_end/back_end.hpp), part of MapperConfig.
 #pragma once
 
+#include <cmath>
+
 #include "core/back_end/correlative_search.hpp"
 #include "core/back_end/pose_graph.hpp"
 #include "core/registration/plicp.hpp"
@@ -78,5 +80,11 @@ struct BackEndConfig {
   float max_edge_chi2 = 100.0f;
   PoseGraphConfig optimizer;
 };
+
+// A correction no larger than the loop-closure search's base window (search_base_m,
+// search_base_rad): what PLICP alone may be trusted with; a larger one a search must verify.
+inline bool WithinSearchBaseWindow(const BackEndConfig& b, const Pose2& correction) {
+  return std::hypot(correction.x, correction.y) <= b.search_base_m && std::fabs(correction.theta) <= b.search_base_rad;
+}
 
 }  // namespace dpcr

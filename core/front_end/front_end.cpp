@@ -547,8 +547,7 @@ void FrontEnd::EnterKnownRegion() {
   // one may be a neighbouring minimum (a wall one doorway over), and the search verifies it.
   if (aligned && frame == region) {
     const Pose2 correction = Between(regions_[region].anchor.Inverse() * submap_before, result.pose);
-    const BackEndConfig& b = config_.back_end;
-    if (std::hypot(correction.x, correction.y) > b.search_base_m || std::fabs(correction.theta) > b.search_base_rad) {
+    if (!WithinSearchBaseWindow(config_.back_end, correction)) {
       submap_pose_ = submap_before;
       aligned = false;
     }

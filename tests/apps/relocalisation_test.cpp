@@ -15,19 +15,13 @@
 #include "core/persistence/map_stream.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
+#include "tests/core/map_file_fixtures.hpp"
 
 namespace {
 
 using M = dpcr::Mapper<dpcr::VacuumProfile>;
 
-class VectorSink final : public dpcr::MapByteSink {
- public:
-  dpcr::Status Write(const std::uint8_t* data, std::size_t size) override {
-    bytes.insert(bytes.end(), data, data + size);
-    return dpcr::Status::kOk;
-  }
-  std::vector<std::uint8_t> bytes;
-};
+using dpcr::test::VectorSink;
 
 dpcr::sim::SimConfig SimConfigFor(std::uint64_t seed, double minutes) {
   dpcr::sim::SimConfig c;

@@ -19,21 +19,14 @@
 #include "host_sim/drivers/replay_clock.hpp"
 #include "tests/board/memory_store.hpp"
 #include "tests/board/office_streams.hpp"
+#include "tests/board/read_log.hpp"
 #include "tests/board/replay_waiter.hpp"
 
 namespace {
 
 using dpcr::test::MemoryStore;
 using dpcr::test::OfficeStreams;
-
-std::string ReadLog(std::FILE* log) {
-  std::fflush(log);
-  std::rewind(log);
-  std::string s;
-  char buf[512];
-  while (std::fgets(buf, sizeof(buf), log) != nullptr) s += buf;
-  return s;
-}
+using dpcr::test::ReadLog;
 
 dpcr::board::FirmwareConfig ConfigFor(const OfficeStreams& o) {
   dpcr::board::FirmwareConfig c;

@@ -18,18 +18,12 @@
 #include "board/firmware_loop.hpp"
 #include "board/systemd_notifier.hpp"
 #include "board/unique_fd.hpp"
+#include "tests/board/read_log.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace {
 
-std::string ReadLog(std::FILE* log) {
-  std::fflush(log);
-  std::rewind(log);
-  std::string s;
-  char buf[512];
-  while (std::fgets(buf, sizeof(buf), log) != nullptr) s += buf;
-  return s;
-}
+using dpcr::test::ReadLog;
 
 struct Pty {
   int master = -1;
