@@ -56,6 +56,9 @@ bool BehindSettledWall(const TiledGrid& grid, Point2 origin, Point2 p, const Gri
   const float cx = p.x * inv_res, cy = p.y * inv_res, sx = dx / d, sy = dy / d;
   const int band = grid.unsettle_occupied_after() > 1 ? grid.unsettle_occupied_after() - 1 : 0;
   const int settled = config.clamp_max - band;
+  // A hit on a settled wall cell is the wall itself (a ray that grazes a wall has wall cells
+  // behind it along its own line): kept.
+  if (grid.Get(CellIndex{FloorToInt(cx), FloorToInt(cy)}) >= settled) return false;
   for (int k = 2; k <= config.drop_hits_behind_settled_cells; ++k) {
     const float back = static_cast<float>(k);
     if (grid.Get(CellIndex{FloorToInt(cx - back * sx), FloorToInt(cy - back * sy)}) >= settled) return true;

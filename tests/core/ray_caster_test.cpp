@@ -149,6 +149,23 @@ TEST_CASE("A return behind a settled wall along its ray is dropped with its ray;
   CHECK(near.Insert(origin, {Point2{1.175f, 0.025f}}, 6).hit_cells == 1);
 }
 
+TEST_CASE("A return on a settled wall seen at a grazing angle is kept with its ray") {
+  // Along a grazing ray the cells before the return lie on the wall itself: they are settled
+  // too, but the return is the wall, not noise carried through it.
+  Fixture f;
+  f.grid->set_settle_at_bounds(true);
+  f.config.drop_hits_behind_settled_cells = 5;
+  std::vector<Point2> wall;
+  for (int x = 40; x <= 60; ++x) wall.push_back(Point2{0.05f * static_cast<float>(x) + 0.025f, 0.025f});
+  for (std::uint32_t stamp = 1; stamp <= 5; ++stamp) f.Insert(Point2{0.025f, 0.025f}, wall, stamp);
+  REQUIRE(f.grid->Get(CellIndex{55, 0}) == f.config.clamp_max);
+  REQUIRE(f.grid->Get(CellIndex{52, 0}) == f.config.clamp_max);
+  // From two rows above the wall, to its cell 55: the ray crosses rows 2 and 1 before it.
+  const auto grazing = f.Insert(Point2{0.025f, 0.125f}, {Point2{2.775f, 0.04f}}, 6);
+  CHECK(grazing.miss_cells > 0);
+  CHECK(f.grid->Get(CellIndex{10, 2}) < 0);
+}
+
 TEST_CASE("A grid that does not settle (the submap) drops no return behind its walls") {
   Fixture f;
   f.config.drop_hits_behind_settled_cells = 5;
