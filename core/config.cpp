@@ -143,7 +143,8 @@ bool BackEndOk(const BackEndConfig& b) {
                      AboveUpTo(b.search_max_rad, 0.0f, kPi) && In(b.search_points, 1, b.max_cloud_points) &&
                      In(b.search_evaluations_per_step, 1, kMaxCount) &&
                      In(b.match_grid_coarsen, 2, 16) && SearchOk(b.search) &&
-                     AboveUpTo(b.large_closure_max_residual_m, 0.0f, 1.0f);
+                     AboveUpTo(b.large_closure_max_residual_m, 0.0f, 1.0f) &&
+                     In(b.unfollowed_closure_min_score, 0.0f, 1.0f);
   return matching && information && loops;
 }
 

@@ -236,7 +236,7 @@ LoopClosureResult BackEnd::FinishLoopClosure(Span<RegionalMap> regions, Span<con
     out.verdict = Status::kRejected;
     return out;
   }
-  if (!AddClosure(regions, region, from, r, submap_world)) {
+  if (!AddClosure(regions, region, from, r, submap_world, found.verdict == Status::kOk ? found.score : 0.0f)) {
     out.verdict = Status::kRejected;
     return out;
   }
@@ -246,7 +246,7 @@ LoopClosureResult BackEnd::FinishLoopClosure(Span<RegionalMap> regions, Span<con
 }
 
 bool BackEnd::AddClosure(Span<RegionalMap> regions, int region, int from, const RegistrationResult& r,
-                         const Pose2& submap_world) {
+                         const Pose2& submap_world, float search_score) {
   PoseGraph& g = *s_.graph;
   if (!config_.enable || region < 0 || from < 0 || region == from || region >= g.vertex_count() ||
       from >= g.vertex_count()) {
@@ -276,7 +276,12 @@ bool BackEnd::AddClosure(Span<RegionalMap> regions, int region, int from, const 
   e.measurement = z;
   e.information = RegistrationInformation(j_inv.transpose() * r.hessian * j_inv, z);
   e.kind = EdgeKind::kLoop;
-  const Status added = g.AddEdgeIfConsistent(e, config_.optimizer, config_.max_edge_chi2);
+  // ...and, unless the search found it unmistakably, the graph must follow it to within what
+  // PLICP alone is trusted with (BackEndConfig::unfollowed_closure_min_score).
+  const bool unmistakable = search_score >= config_.unfollowed_closure_min_score;
+  const Status added = g.AddEdgeIfConsistent(e, config_.optimizer, config_.max_edge_chi2,
+                                             unmistakable ? 3.0e38f : config_.search_base_m,
+                                             unmistakable ? 3.0e38f : config_.search_base_rad);
   trace_.graph = added;
   if (added != Status::kOk) {
     ++counters_.loop_closures_rejected;

@@ -118,7 +118,8 @@ class BackEnd {
   // A registration of the submap (at `submap_world` before it) to region `region`'s map alone,
   // made while the robot's pose was known in region `from`: the same closure edge, without the
   // search. True when the graph took it (anchors moved and written into regions).
-  bool AddClosure(Span<RegionalMap> regions, int region, int from, const RegistrationResult& r, const Pose2& submap_world);
+  bool AddClosure(Span<RegionalMap> regions, int region, int from, const RegistrationResult& r, const Pose2& submap_world,
+                  float search_score = 1.0f);
 
   const BackEndCounters& counters() const { return counters_; }
   const ClosureTrace& last_closure() const { return trace_; }

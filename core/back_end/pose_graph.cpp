@@ -95,7 +95,8 @@ int PoseGraph::FindEdge(const GraphEdge& edge) const {
   return -1;
 }
 
-Status PoseGraph::AddEdgeIfConsistent(const GraphEdge& edge, const PoseGraphConfig& config, float max_edge_chi2) {
+Status PoseGraph::AddEdgeIfConsistent(const GraphEdge& edge, const PoseGraphConfig& config, float max_edge_chi2,
+                                      float max_own_error_m, float max_own_error_rad) {
   for (int i = 0; i < vertex_count_; ++i) backup_[static_cast<std::size_t>(i)] = vertices_[static_cast<std::size_t>(i)];
   for (int k = 0; k < edge_count_; ++k) chi2_[static_cast<std::size_t>(k)] = EdgeChi2(k);
   const int old_count = edge_count_;
@@ -110,6 +111,10 @@ Status PoseGraph::AddEdgeIfConsistent(const GraphEdge& edge, const PoseGraphConf
   for (int k = 0; consistent && k < edge_count_; ++k) {
     const float before = k < old_count && k != replaced ? chi2_[static_cast<std::size_t>(k)] : 0.0f;
     if (EdgeChi2(k) > max_edge_chi2 && EdgeChi2(k) > before) consistent = false;
+  }
+  if (consistent) {
+    const Pose2 own = Between(edge.measurement, Between(vertex(edge.from), vertex(edge.to)));
+    consistent = std::hypot(own.x, own.y) <= max_own_error_m && std::fabs(own.theta) <= max_own_error_rad;
   }
   if (consistent) return Status::kOk;
   for (int i = 0; i < vertex_count_; ++i) vertices_[static_cast<std::size_t>(i)] = backup_[static_cast<std::size_t>(i)];

@@ -81,8 +81,14 @@ class PoseGraph {
   // above it before. Otherwise the edge is removed, the vertices restored, and kRejected returned.
   // A true closure after a long drift spreads its correction over the chain and passes; a wrong
   // one bends the chain somewhere (a robust kernel alone cannot tell them apart from a drifted
-  // start: both are far off). kPoolFull / kInvalidArgument as AddOrReplaceEdge.
-  Status AddEdgeIfConsistent(const GraphEdge& edge, const PoseGraphConfig& config, float max_edge_chi2);
+  // start: both are far off). And the graph must follow the edge: optimised, the edge's own error
+  // (its measurement against its vertices' relative pose) must stay within `max_own_error_m` and
+  // `max_own_error_rad`. An edge weak along some direction (a look-alike a metre along a lane) is
+  // within its chi2 while the graph does not move for it; whoever acts on its measurement (the
+  // robot placed by the closure) would then jump where the map does not. kPoolFull /
+  // kInvalidArgument as AddOrReplaceEdge.
+  Status AddEdgeIfConsistent(const GraphEdge& edge, const PoseGraphConfig& config, float max_edge_chi2,
+                             float max_own_error_m = 3.0e38f, float max_own_error_rad = 3.0e38f);
 
   int vertex_count() const { return vertex_count_; }
   int edge_count() const { return edge_count_; }

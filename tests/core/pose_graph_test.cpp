@@ -107,6 +107,36 @@ TEST_CASE("A wrong closure that bends the graph is refused and the graph restore
   REQUIRE(g.edge_count() == kLoop + 1);
 }
 
+TEST_CASE("A closure weak along one direction that the graph does not follow is refused when asked") {
+  // Strong across x and in heading, nearly nothing along x: 1.2 m off along x it stays within
+  // the chi2 bound, and the graph (stiff along x) does not move for it.
+  dpcr::PoseGraphStorage<16, 32> g;
+  std::mt19937 rng(11);
+  BuildNoisyChain(g, rng);
+  REQUIRE(g.AddEdgeIfConsistent(TrueClosure(), dpcr::PoseGraphConfig{}, kMaxEdgeChi2) == dpcr::Status::kOk);
+  GraphEdge weak = WrongEdge(1.2f);
+  weak.information = Eigen::Vector3f(5.0f, 10000.0f, 160000.0f).asDiagonal();
+  weak.kind = EdgeKind::kLoop;
+  const Pose2 v5 = g.vertex(5);
+  // Without the bound on its own error: taken (the old rule), and the graph barely moves.
+  {
+    dpcr::PoseGraphStorage<16, 32> copy;
+    std::mt19937 rng_copy(11);
+    BuildNoisyChain(copy, rng_copy);
+    REQUIRE(copy.AddEdgeIfConsistent(TrueClosure(), dpcr::PoseGraphConfig{}, kMaxEdgeChi2) == dpcr::Status::kOk);
+    REQUIRE(copy.AddEdgeIfConsistent(weak, dpcr::PoseGraphConfig{}, kMaxEdgeChi2) == dpcr::Status::kOk);
+    const Pose2 own = dpcr::Between(weak.measurement, dpcr::Between(copy.vertex(3), copy.vertex(9)));
+    CHECK(std::hypot(own.x, own.y) > 1.0f);
+  }
+  // With it (0.3 m, 0.05 rad): refused, the graph restored.
+  REQUIRE(g.AddEdgeIfConsistent(weak, dpcr::PoseGraphConfig{}, kMaxEdgeChi2, 0.3f, 0.05f) == dpcr::Status::kRejected);
+  REQUIRE(g.edge_count() == kLoop);
+  REQUIRE(g.vertex(5).x == v5.x);
+  // The same edge measured right passes the bound.
+  weak.measurement = dpcr::Between(TruePose(3), TruePose(9));
+  REQUIRE(g.AddEdgeIfConsistent(weak, dpcr::PoseGraphConfig{}, kMaxEdgeChi2, 0.3f, 0.05f) == dpcr::Status::kOk);
+}
+
 TEST_CASE("The robust kernel keeps a wrong edge from bending a consistent graph") {
   for (const float kernel_phi : {9.0f, 1e12f}) {
     dpcr::PoseGraphStorage<16, 32> g;
