@@ -25,7 +25,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   last_gyro_yaw_ = 0.0f;
   search_grid_version_ = 0;
   consecutive_rejections_ = 0;
-  restart_pending_ = bent_ = step_refuted_ = false;
+  restart_pending_ = bent_ = false;
   bent_kept_out_ = 0;
   last_stamp_us_ = -1;
   streak_us_ = 0;
@@ -92,20 +92,6 @@ Pose2 FrontEnd::Predict(std::int64_t stamp_us, std::int64_t dt_us) {
   return predicted;
 }
 
-Pose2 FrontEnd::MotionSince(const Pose2& previous, const ScanMotion& motion, std::int64_t since_last_us) const {
-  Pose2 step = Between(previous, pose_);
-  // A turn the scan itself refuted (RegisterRedeskewed: it fitted the walls with the turn rate its
-  // de-skew assumed, not with the one this step implies) is an error of the previous pose, not
-  // motion; carried into the next prediction and de-skew it bent that scan and misplaced it in
-  // turn: a robot at rest after a turn swung by 20 deg (no odometry, apartment seed 2). The
-  // assumed rate stays (the translation keeps the step: with a gyro alone, keeping its velocity
-  // too was worse, 0.067 -> 0.130 m).
-  if (step_refuted_ && !motion.gyro() && since_last_us > 0) {
-    step.theta = motion.velocity().theta * static_cast<float>(since_last_us) * 1e-6f;
-  }
-  return step;
-}
-
 Pose2 FrontEnd::VelocityPerSecond() const {
   if (last_motion_us_ <= 0) return Pose2::Identity();
   const float f = 1e6f / static_cast<float>(last_motion_us_);
@@ -144,7 +130,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   } else {
     pose_ = predicted;
   }
-  last_motion_ = MotionSince(previous, motion, since_last_us);
+  last_motion_ = Between(previous, pose_);
   // In a rejection streak the constant velocity fades (halves each scan): a turn carried on at
   // its last rate long after the robot stopped would spin the pose away (no wheels to say so).
   if (consecutive_rejections_ > 0) last_motion_ = Pose2{0.5f * last_motion_.x, 0.5f * last_motion_.y, 0.5f * last_motion_.theta};
@@ -335,7 +321,7 @@ void FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, st
       RegisterFirst(*s_.submap_reference, consecutive_rejections_ % 2 == 0 ? s_.search_grid : nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
                     Span<const Point2>(s_.hits.data(), projected->hits), pose_, predicted, f, s_.correspondences, &fe_counters_.search,
                     PriorXyScale(motion));
-  bent_ = step_refuted_ = false;
+  bent_ = false;
   if (!motion.wheels() && dt_us > 0 && !beams.empty()) r = RegisterRedeskewed(beams, motion, dt_us, projected, r);
   ++fe_counters_.first_registrations;
   weak_match_ = r.verdict != Status::kOk || r.inlier_ratio < f.weak_match_inlier_ratio;
@@ -375,8 +361,7 @@ RegistrationResult FrontEnd::RegisterRedeskewed(Span<const Beam> beams, const Sc
                     PriorXyScale(motion));
   if (second.verdict == Status::kOk) return second;
   if (first.verdict != Status::kOk) return bent_ ? TrackBent(second, first.pose) : second;
-  // Only the first one was accepted: its points back, and its velocity.
-  step_refuted_ = true;
+  // Only the first one was accepted: its points back.
   *projected = ProjectScan(beams, config_.lidar, motion, s_.hits, s_.free_ends);
   return first;
 }

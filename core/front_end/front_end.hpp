@@ -106,8 +106,6 @@ class FrontEnd {
   // and per second (the de-skew's, core/front_end/scan_motion.hpp).
   Pose2 ConstantVelocity(std::int64_t dt_us) const;
   Pose2 VelocityPerSecond() const;
-  // The motion from `previous` to pose_ that the constant velocity keeps for the next scan.
-  Pose2 MotionSince(const Pose2& previous, const ScanMotion& motion, std::int64_t since_last_us) const;
   DPCR_STAGE void RegisterScan(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, ProjectedScan* projected,
                                const Pose2& predicted);
   // Without wheels the de-skew assumed the last motion's velocity; a turn or a drive that started
@@ -222,9 +220,6 @@ class FrontEnd {
   bool restart_pending_ = false;  // a submap restart is due, waiting for a scan with enough returns
   bool bent_ = false;             // the last scan's de-skew was doubtful (RegisterRedeskewed)
   std::uint8_t bent_kept_out_ = 0;  // bent scans kept out in a row
-  // The last scan fitted the walls with the velocity its de-skew assumed and not with the one its
-  // pose step implied (RegisterRedeskewed): that step was off (MotionSince).
-  bool step_refuted_ = false;
   static constexpr std::uint8_t kMaxBentKeptOut = 5;  // then one goes in: the submap must not go stale
   std::int64_t last_stamp_us_ = -1;  // the last scan's stamp, where pose_ is (-1: none yet)
   std::int64_t streak_us_ = 0;       // time covered by the current rejection streak
