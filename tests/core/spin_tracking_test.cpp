@@ -131,8 +131,9 @@ TEST_CASE("An in-place spin at 120 deg/s is tracked with a gyro alone") {
 
 TEST_CASE("A robot at rest after a turn is held without odometry") {
   // A turn as the simulator drives one, seen with an XV-11's faults: once the robot stands still
-  // the pose must too (in the simulated apartment a step carried on after a turn swung it by
-  // tens of degrees: FrontEnd::MotionSince; this clean room does not provoke that case).
+  // the pose must too. (In the simulated apartment without odometry a wrong step after a turn,
+  // carried on by the constant velocity, swung a standing robot by tens of degrees; this clean
+  // room does not provoke that case: docs/front-end-accuracy.md.)
   const SpinResult r = Spin(false, Turn, 3.0f, true);
   CHECK(r.rejected * 10 < r.scans);
   CHECK(r.worst_at_rest < 0.035f);
