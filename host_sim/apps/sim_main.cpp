@@ -242,6 +242,9 @@ int Run(const Options& opt) {
   }
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
+  // An unknown start in a loaded map: measured from the first fix (before it the pose is a guess,
+  // and a start-aligned LocErr_ave would carry that guess through the whole run).
+  if (mapper.config().localisation.unknown_start && !recoveries.empty()) run.accuracy_from_us = recoveries.front().stamp_us;
   const dpcr::Pose2 align = WorldToMap(opt, run);
   if (!run.ground_truth.empty()) {
     dpcr::eval::Trajectory gt_in_map = run.ground_truth;

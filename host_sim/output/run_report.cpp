@@ -80,9 +80,16 @@ nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, cons
   metrics["wall_seconds"] = run.wall_seconds;
   metrics["map_size_cells"] = {map.width(), map.height()};
   if (!run.ground_truth.empty()) {
-    const auto a = dpcr::eval::EvaluateAgainstGroundTruth(run.estimate, run.ground_truth);
+    dpcr::eval::Trajectory measured;
+    for (const auto& p : run.estimate) {
+      if (p.stamp_us >= run.accuracy_from_us) measured.push_back(p);
+    }
+    const auto a = dpcr::eval::EvaluateAgainstGroundTruth(measured, run.ground_truth);
     metrics["accuracy"] = {{"loc_err_ave_m", a.loc_err_ave_m}, {"ate_rmse_m", a.ate_rmse_m},
                            {"max_err_m", a.max_err_m}, {"samples", a.samples}, {"unmatched", a.unmatched}};
+    if (run.accuracy_from_us != INT64_MIN && !run.estimate.empty()) {
+      metrics["accuracy"]["from_s"] = static_cast<double>(run.accuracy_from_us - run.estimate.front().stamp_us) * 1e-6;
+    }
   }
   if (run.relations != nullptr) {
     const auto r = dpcr::eval::EvaluateRelations(run.estimate, *run.relations);

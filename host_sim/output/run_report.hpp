@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <cstdint>
 #include <vector>
 
 #include "host_sim/output/map_files.hpp"
@@ -31,6 +32,9 @@ struct RunRecord {
   int backend_calls = 0;
   double backend_total_ms = 0.0;
   double backend_max_ms = 0.0;
+  // metrics.json "accuracy" from this stamp on (start-aligned there): a session started at an
+  // unknown pose in a loaded map has no pose worth measuring before its first fix.
+  std::int64_t accuracy_from_us = INT64_MIN;
 };
 
 // The back end's work counted so far (jobs and searches): a change across a call means it worked.
