@@ -26,6 +26,13 @@ cmp -s "$T/export/map.pgm" "$T/a/map.pgm" || fail "exported PGM differs from the
 "$SIM" --world apartment --minutes 2 --seed 2 --out "$T/b" --load-map "$T/maps/a.dpcr" --save-map "$T/maps/b.dpcr" 2> "$T/sim2.log" ||
   fail "dpcr-sim --load-map"
 "$MAP" check "$T/maps/b.dpcr" || fail "second session's map"
+# Its accuracy is measured from its first fix (before it the pose is a guess): start-aligned at
+# the guess, LocErr_ave read metres.
+if grep -q '"relocalisations": [1-9]' "$T/b/metrics.json"; then
+  grep -q '"from_s":' "$T/b/metrics.json" || fail "second session: accuracy not measured from the fix"
+  loc=$(grep -m1 '"loc_err_ave_m":' "$T/b/metrics.json" | tr -dc '0-9.')
+  awk -v l="$loc" 'BEGIN { exit !(l < 0.5) }' || fail "second session: LocErr_ave $loc m from its fix"
+fi
 "$REPLAY" --uart "$T/dev/lidar.uart" --candump "$T/dev/wheels.log" --out "$T/c" --load-map "$T/maps/b.dpcr" \
   --save-map "$T/maps/c.dpcr" 2> /dev/null || fail "dpcr-replay --load-map"
 "$MAP" check "$T/maps/c.dpcr" || fail "replay session's map"
