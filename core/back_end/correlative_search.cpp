@@ -98,29 +98,41 @@ void MatchGrid::Build(const TiledGrid& grid, CellBox window, int coarsen, std::i
   DistanceTransform();
 }
 
-void MatchGrid::DistanceTransform() {
-  const auto relax = [&](int x, int y, int dx, int dy, int weight) {
-    const int nx = x + dx, ny = y + dy;
-    if (nx < 0 || ny < 0 || nx >= w_ || ny >= h_) return;
-    std::uint8_t& c = cells_[static_cast<std::size_t>(y * w_ + x)];
-    const int d = cells_[static_cast<std::size_t>(ny * w_ + nx)] + weight;
-    if (d < c) c = static_cast<std::uint8_t>(d);
-  };
-  for (int y = 0; y < h_; ++y) {
-    for (int x = 0; x < w_; ++x) {
-      relax(x, y, -1, 0, kAxis);
-      relax(x, y, 0, -1, kAxis);
-      relax(x, y, -1, -1, kDiagonal);
-      relax(x, y, 1, -1, kDiagonal);
+namespace {
+
+// min(c, d): a relaxation of a chamfer pass (d may pass 255; c never does).
+inline int Relaxed(int c, int d) { return d < c ? d : c; }
+
+// One row of a chamfer pass: each cell relaxed from its neighbour before it along the row (`step`
+// -1 forward, +1 backward, already done) and the three of the row done before (`prev`, null for
+// the first row), in the pass's order. The edge cells have fewer neighbours; the interior reads
+// them without bounds checks.
+void ChamferRow(std::uint8_t* row, const std::uint8_t* prev, int w, int step, int axis, int diagonal) {
+  const int first = step < 0 ? 0 : w - 1, last = step < 0 ? w - 1 : 0;
+  for (int k = 0; k < w; ++k) {
+    const int x = first - step * k;  // forward: 0, 1, ...; backward: w - 1, w - 2, ...
+    int c = row[x];
+    if (x != first) c = Relaxed(c, row[x + step] + axis);
+    if (prev != nullptr) {
+      c = Relaxed(c, prev[x] + axis);
+      if (x != first) c = Relaxed(c, prev[x + step] + diagonal);
+      if (x != last) c = Relaxed(c, prev[x - step] + diagonal);
     }
+    row[x] = static_cast<std::uint8_t>(c);
+  }
+}
+
+}  // namespace
+
+void MatchGrid::DistanceTransform() {
+  // Forward (rows up, left to right: from the left, below, below-left, below-right), then backward
+  // (rows down, right to left, mirrored).
+  std::uint8_t* cells = cells_.data();
+  for (int y = 0; y < h_; ++y) {
+    ChamferRow(cells + y * w_, y > 0 ? cells + (y - 1) * w_ : nullptr, w_, -1, kAxis, kDiagonal);
   }
   for (int y = h_ - 1; y >= 0; --y) {
-    for (int x = w_ - 1; x >= 0; --x) {
-      relax(x, y, 1, 0, kAxis);
-      relax(x, y, 0, 1, kAxis);
-      relax(x, y, 1, 1, kDiagonal);
-      relax(x, y, -1, 1, kDiagonal);
-    }
+    ChamferRow(cells + y * w_, y + 1 < h_ ? cells + (y + 1) * w_ : nullptr, w_, 1, kAxis, kDiagonal);
   }
   std::uint8_t lut[256];
   for (int d = 0; d < 256; ++d) lut[d] = LikelihoodOf(d);
@@ -162,10 +174,24 @@ struct CloudScorer {
     for (const MatchCell& c : cells) sum += grid.AtCell(c.x + ox, c.y + oy);
     return sum;
   }
-  std::uint32_t CoarseBound(int bx, int by) const {
-    std::uint32_t sum = 0;
-    for (const MatchCell& c : cells) sum += grid.CoarseBoundAt(c.x + bx, c.y + by);
-    return sum;
+  // The coarse bounds of `count` (<= kRowBatch) coarse blocks side by side from (bx, by), in one
+  // pass over the cloud: out[i] is the bound of the block at (bx + kCoarseBlock i, by).
+  static constexpr int kRowBatch = 8;
+  void CoarseBounds(int bx, int by, int count, std::uint32_t* out) const {
+    constexpr int kC = MatchGrid::kCoarseBlock;
+    const int w = grid.width(), h = grid.height(), span = kC * (count - 1);
+    const std::uint8_t* table = grid.coarse_bounds_data();
+    std::uint32_t sums[kRowBatch] = {};
+    for (const MatchCell& c : cells) {
+      const int x = c.x + bx, y = c.y + by;
+      if (x >= 0 && y >= 0 && x + span < w && y < h) {
+        const std::uint8_t* p = table + (y * w + x);
+        for (int i = 0; i < count; ++i) sums[i] += p[i * kC];
+      } else {
+        for (int i = 0; i < count; ++i) sums[i] += grid.CoarseBoundAt(x + i * kC, y);
+      }
+    }
+    for (int i = 0; i < count; ++i) out[i] = sums[i];
   }
   // Sixteen sums in one pass over the cloud, sums[4 j + i] for i, j < 4: Score(x0 + i, y0 + j)
   // (the offsets of a block), or with kBounds the bound of the block at (x0 + kBlock i,
@@ -266,11 +292,11 @@ void BeginAngle(const MatchGrid& grid, Span<const Point2> points, Pose2 initial,
 // peak); without, the poses within max_second_ratio of the best go to `near_best`, and only
 // blocks that cannot reach that ratio are pruned.
 void SweepCoarseBlock(const MatchGrid& grid, std::size_t points, int cx, int cy, int n, float dtheta,
-                      Span<const MatchCell> rotated, SweepState* st) {
+                      std::uint32_t coarse_bound, Span<const MatchCell> rotated, SweepState* st) {
   constexpr int kB = MatchGrid::kBlock, kC = MatchGrid::kCoarseBlock;
   const CloudScorer scorer{grid, Span<const MatchCell>(rotated.data(), points)};
   ++st->evaluated;
-  if (st->Prune(scorer.CoarseBound(cx, cy))) return;
+  if (st->Prune(coarse_bound)) return;
   static_assert(kC == 4 * kB, "a coarse block is 4 x 4 blocks");
   std::uint32_t bounds[16];
   scorer.Sixteen<true>(cx, cy, bounds);
@@ -355,12 +381,27 @@ bool CorrelativeSearchRun::Continue(const MatchGrid& grid, Span<const Point2> po
   // Evaluations of one coarse block when nothing is pruned: a slice stops before one that might
   // not fit (but always does one).
   constexpr std::uint32_t kWorstBlock = kC * kC + (kC / MatchGrid::kBlock) * (kC / MatchGrid::kBlock) + 1;
+  // The coarse bounds of the blocks ahead in the row, computed together (CloudScorer::CoarseBounds):
+  // bounds[k] is block batch_start + k's at the current angle; a slice that stops mid-batch drops the rest.
+  std::uint32_t bounds[CloudScorer::kRowBatch];
+  int batch_start = 0, batch_size = 0;
   bool first = true;
   while (next_angle_ <= last && (first || st.evaluated + kWorstBlock <= max_evaluations)) {
     first = false;
     const float dtheta = static_cast<float>(AngleAt(next_angle_)) * step_;
-    if (next_block_ == 0) BeginAngle(grid, points, initial_, dtheta, next_angle_ == 0, config, rotated, &st);
-    SweepCoarseBlock(grid, points.size(), -n + (next_block_ % per_row) * kC, -n + (next_block_ / per_row) * kC, n, dtheta,
+    if (next_block_ == 0) {
+      BeginAngle(grid, points, initial_, dtheta, next_angle_ == 0, config, rotated, &st);
+      batch_size = 0;
+    }
+    const int col = next_block_ % per_row, row = next_block_ / per_row;
+    if (next_block_ < batch_start || next_block_ >= batch_start + batch_size) {
+      const int left = per_row - col;
+      batch_start = next_block_;
+      batch_size = left < CloudScorer::kRowBatch ? left : CloudScorer::kRowBatch;
+      const CloudScorer scorer{grid, Span<const MatchCell>(rotated.data(), points.size())};
+      scorer.CoarseBounds(-n + col * kC, -n + row * kC, batch_size, bounds);
+    }
+    SweepCoarseBlock(grid, points.size(), -n + col * kC, -n + row * kC, n, dtheta, bounds[next_block_ - batch_start],
                      Span<const MatchCell>(rotated.data(), points.size()), &st);
     if (++next_block_ == blocks) {
       next_block_ = 0;
