@@ -166,9 +166,35 @@ std::int16_t ToMatchCell(float cells) {
 int AngleAt(int k) { return (k % 2 == 1) ? (k + 1) / 2 : -(k / 2); }
 
 // The sums over the cloud (offset by whole match cells) of a grid's likelihoods and of its bounds.
+// The box of the rotated cloud, in match cells: an offset that keeps it inside the grid needs no
+// bounds check per point.
+struct CloudExtent {
+  bool known = false;
+  int min_x = 0, min_y = 0, max_x = 0, max_y = 0;
+  static CloudExtent Of(Span<const MatchCell> cells) {
+    CloudExtent e;
+    e.known = !cells.empty();
+    if (!e.known) return e;
+    e.min_x = e.max_x = cells[0].x;
+    e.min_y = e.max_y = cells[0].y;
+    for (const MatchCell& c : cells) {
+      e.min_x = c.x < e.min_x ? c.x : e.min_x;
+      e.max_x = c.x > e.max_x ? c.x : e.max_x;
+      e.min_y = c.y < e.min_y ? c.y : e.min_y;
+      e.max_y = c.y > e.max_y ? c.y : e.max_y;
+    }
+    return e;
+  }
+  // Every point's look-ups from (x, y) to (x + span_x, y + span_y), offset by (x0, y0), fall inside w x h.
+  bool Inside(int x0, int y0, int span_x, int span_y, int w, int h) const {
+    return known && min_x + x0 >= 0 && min_y + y0 >= 0 && max_x + x0 + span_x < w && max_y + y0 + span_y < h;
+  }
+};
+
 struct CloudScorer {
   const MatchGrid& grid;
   Span<const MatchCell> cells;  // the rotated cloud
+  CloudExtent extent;
   std::uint32_t Score(int ox, int oy) const {
     std::uint32_t sum = 0;
     for (const MatchCell& c : cells) sum += grid.AtCell(c.x + ox, c.y + oy);
@@ -182,12 +208,21 @@ struct CloudScorer {
     const int w = grid.width(), h = grid.height(), span = kC * (count - 1);
     const std::uint8_t* table = grid.coarse_bounds_data();
     std::uint32_t sums[kRowBatch] = {};
+    if (extent.Inside(bx, by, span, 0, w, h)) {
+      const int offset = by * w + bx;
+      for (const MatchCell& c : cells) {
+        const std::uint8_t* p = table + (c.y * w + c.x + offset);
+        for (int i = 0; i < count; ++i) sums[i] += p[i * kC];
+      }
+      for (int i = 0; i < count; ++i) out[i] = sums[i];
+      return;
+    }
     for (const MatchCell& c : cells) {
       const int x = c.x + bx, y = c.y + by;
       if (x >= 0 && y >= 0 && x + span < w && y < h) {
         const std::uint8_t* p = table + (y * w + x);
         for (int i = 0; i < count; ++i) sums[i] += p[i * kC];
-      } else {
+      } else if (x < w && y < h && x + span > -kC && y > -kC) {  // else all its look-ups read 0
         for (int i = 0; i < count; ++i) sums[i] += grid.CoarseBoundAt(x + i * kC, y);
       }
     }
@@ -202,9 +237,22 @@ struct CloudScorer {
   void Sixteen(int x0, int y0, std::uint32_t (&out)[16]) const {
     constexpr int kStep = kBounds ? MatchGrid::kBlock : 1;
     constexpr int kSpan = 3 * kStep;  // from a point's first look-up to its last, along each axis
+    // A look-up at or left of (below) this reads 0 (BoundAt: a block reaching in from the edge does not).
+    constexpr int kZeroAtOrBelow = kBounds ? -MatchGrid::kBlock : -1;
     const int w = grid.width(), h = grid.height();
     const std::uint8_t* table = kBounds ? grid.bounds_data() : grid.cells_data();
     std::uint32_t sums[16] = {};
+    if (extent.Inside(x0, y0, kSpan, kSpan, w, h)) {
+      const int offset = y0 * w + x0;
+      for (const MatchCell& c : cells) {
+        const std::uint8_t* p = table + (c.y * w + c.x + offset);
+        for (int j = 0; j < 4; ++j, p += kStep * w) {
+          for (int i = 0; i < 4; ++i) sums[4 * j + i] += p[i * kStep];
+        }
+      }
+      for (int k = 0; k < 16; ++k) out[k] = sums[k];
+      return;
+    }
     for (const MatchCell& c : cells) {
       const int x = c.x + x0, y = c.y + y0;
       if (x >= 0 && y >= 0 && x + kSpan < w && y + kSpan < h) {
@@ -212,7 +260,7 @@ struct CloudScorer {
         for (int j = 0; j < 4; ++j, p += kStep * w) {
           for (int i = 0; i < 4; ++i) sums[4 * j + i] += p[i * kStep];
         }
-      } else {
+      } else if (x < w && y < h && x + kSpan > kZeroAtOrBelow && y + kSpan > kZeroAtOrBelow) {  // else all read 0
         for (int j = 0; j < 4; ++j) {
           for (int i = 0; i < 4; ++i) {
             sums[4 * j + i] += kBounds ? grid.BoundAt(x + i * kStep, y + j * kStep) : grid.AtCell(x + i, y + j);
@@ -280,7 +328,7 @@ void BeginAngle(const MatchGrid& grid, Span<const Point2> points, Pose2 initial,
     rotated[i] = MatchCell{ToMatchCell((w.x - grid.origin().x) * inv_res), ToMatchCell((w.y - grid.origin().y) * inv_res)};
   }
   if (first_angle && st->exclude == nullptr) {
-    const CloudScorer scorer{grid, Span<const MatchCell>(rotated.data(), points.size())};
+    const CloudScorer scorer{grid, Span<const MatchCell>(rotated.data(), points.size()), CloudExtent{}};
     ++st->evaluated;
     st->Offer(Peak{static_cast<float>(scorer.Score(0, 0)), 0, 0, 0.0f});
   }
@@ -291,10 +339,9 @@ void BeginAngle(const MatchGrid& grid, Span<const Point2> points, Pose2 initial,
 // `exclude` set, poses within the separation of it are skipped (the search for a second, separate
 // peak); without, the poses within max_second_ratio of the best go to `near_best`, and only
 // blocks that cannot reach that ratio are pruned.
-void SweepCoarseBlock(const MatchGrid& grid, std::size_t points, int cx, int cy, int n, float dtheta,
-                      std::uint32_t coarse_bound, Span<const MatchCell> rotated, SweepState* st) {
+void SweepCoarseBlock(const CloudScorer& scorer, int cx, int cy, int n, float dtheta, std::uint32_t coarse_bound,
+                      SweepState* st) {
   constexpr int kB = MatchGrid::kBlock, kC = MatchGrid::kCoarseBlock;
-  const CloudScorer scorer{grid, Span<const MatchCell>(rotated.data(), points)};
   ++st->evaluated;
   if (st->Prune(coarse_bound)) return;
   static_assert(kC == 4 * kB, "a coarse block is 4 x 4 blocks");
@@ -385,6 +432,7 @@ bool CorrelativeSearchRun::Continue(const MatchGrid& grid, Span<const Point2> po
   // bounds[k] is block batch_start + k's at the current angle; a slice that stops mid-batch drops the rest.
   std::uint32_t bounds[CloudScorer::kRowBatch];
   int batch_start = 0, batch_size = 0;
+  CloudExtent extent;
   bool first = true;
   while (next_angle_ <= last && (first || st.evaluated + kWorstBlock <= max_evaluations)) {
     first = false;
@@ -393,16 +441,17 @@ bool CorrelativeSearchRun::Continue(const MatchGrid& grid, Span<const Point2> po
       BeginAngle(grid, points, initial_, dtheta, next_angle_ == 0, config, rotated, &st);
       batch_size = 0;
     }
+    const Span<const MatchCell> cloud(rotated.data(), points.size());
+    if (batch_size == 0) extent = CloudExtent::Of(cloud);  // a new angle, or a slice starting mid-angle
+    const CloudScorer scorer{grid, cloud, extent};
     const int col = next_block_ % per_row, row = next_block_ / per_row;
     if (next_block_ < batch_start || next_block_ >= batch_start + batch_size) {
       const int left = per_row - col;
       batch_start = next_block_;
       batch_size = left < CloudScorer::kRowBatch ? left : CloudScorer::kRowBatch;
-      const CloudScorer scorer{grid, Span<const MatchCell>(rotated.data(), points.size())};
       scorer.CoarseBounds(-n + col * kC, -n + row * kC, batch_size, bounds);
     }
-    SweepCoarseBlock(grid, points.size(), -n + col * kC, -n + row * kC, n, dtheta, bounds[next_block_ - batch_start],
-                     Span<const MatchCell>(rotated.data(), points.size()), &st);
+    SweepCoarseBlock(scorer, -n + col * kC, -n + row * kC, n, dtheta, bounds[next_block_ - batch_start], &st);
     if (++next_block_ == blocks) {
       next_block_ = 0;
       ++next_angle_;
