@@ -98,29 +98,41 @@ void MatchGrid::Build(const TiledGrid& grid, CellBox window, int coarsen, std::i
   DistanceTransform();
 }
 
-void MatchGrid::DistanceTransform() {
-  const auto relax = [&](int x, int y, int dx, int dy, int weight) {
-    const int nx = x + dx, ny = y + dy;
-    if (nx < 0 || ny < 0 || nx >= w_ || ny >= h_) return;
-    std::uint8_t& c = cells_[static_cast<std::size_t>(y * w_ + x)];
-    const int d = cells_[static_cast<std::size_t>(ny * w_ + nx)] + weight;
-    if (d < c) c = static_cast<std::uint8_t>(d);
-  };
-  for (int y = 0; y < h_; ++y) {
-    for (int x = 0; x < w_; ++x) {
-      relax(x, y, -1, 0, kAxis);
-      relax(x, y, 0, -1, kAxis);
-      relax(x, y, -1, -1, kDiagonal);
-      relax(x, y, 1, -1, kDiagonal);
+namespace {
+
+// min(c, d): a relaxation of a chamfer pass (d may pass 255; c never does).
+inline int Relaxed(int c, int d) { return d < c ? d : c; }
+
+// One row of a chamfer pass: each cell relaxed from its neighbour before it along the row (`step`
+// -1 forward, +1 backward, already done) and the three of the row done before (`prev`, null for
+// the first row), in the pass's order. The edge cells have fewer neighbours; the interior reads
+// them without bounds checks.
+void ChamferRow(std::uint8_t* row, const std::uint8_t* prev, int w, int step, int axis, int diagonal) {
+  const int first = step < 0 ? 0 : w - 1, last = step < 0 ? w - 1 : 0;
+  for (int k = 0; k < w; ++k) {
+    const int x = first - step * k;  // forward: 0, 1, ...; backward: w - 1, w - 2, ...
+    int c = row[x];
+    if (x != first) c = Relaxed(c, row[x + step] + axis);
+    if (prev != nullptr) {
+      c = Relaxed(c, prev[x] + axis);
+      if (x != first) c = Relaxed(c, prev[x + step] + diagonal);
+      if (x != last) c = Relaxed(c, prev[x - step] + diagonal);
     }
+    row[x] = static_cast<std::uint8_t>(c);
+  }
+}
+
+}  // namespace
+
+void MatchGrid::DistanceTransform() {
+  // Forward (rows up, left to right: from the left, below, below-left, below-right), then backward
+  // (rows down, right to left, mirrored).
+  std::uint8_t* cells = cells_.data();
+  for (int y = 0; y < h_; ++y) {
+    ChamferRow(cells + y * w_, y > 0 ? cells + (y - 1) * w_ : nullptr, w_, -1, kAxis, kDiagonal);
   }
   for (int y = h_ - 1; y >= 0; --y) {
-    for (int x = w_ - 1; x >= 0; --x) {
-      relax(x, y, 1, 0, kAxis);
-      relax(x, y, 0, 1, kAxis);
-      relax(x, y, 1, 1, kDiagonal);
-      relax(x, y, -1, 1, kDiagonal);
-    }
+    ChamferRow(cells + y * w_, y + 1 < h_ ? cells + (y + 1) * w_ : nullptr, w_, 1, kAxis, kDiagonal);
   }
   std::uint8_t lut[256];
   for (int d = 0; d < 256; ++d) lut[d] = LikelihoodOf(d);
@@ -154,23 +166,109 @@ std::int16_t ToMatchCell(float cells) {
 int AngleAt(int k) { return (k % 2 == 1) ? (k + 1) / 2 : -(k / 2); }
 
 // The sums over the cloud (offset by whole match cells) of a grid's likelihoods and of its bounds.
+// The box of the rotated cloud, in match cells: an offset that keeps it inside the grid needs no
+// bounds check per point.
+struct CloudExtent {
+  bool known = false;
+  int min_x = 0, min_y = 0, max_x = 0, max_y = 0;
+  static CloudExtent Of(Span<const MatchCell> cells) {
+    CloudExtent e;
+    e.known = !cells.empty();
+    if (!e.known) return e;
+    e.min_x = e.max_x = cells[0].x;
+    e.min_y = e.max_y = cells[0].y;
+    for (const MatchCell& c : cells) {
+      e.min_x = c.x < e.min_x ? c.x : e.min_x;
+      e.max_x = c.x > e.max_x ? c.x : e.max_x;
+      e.min_y = c.y < e.min_y ? c.y : e.min_y;
+      e.max_y = c.y > e.max_y ? c.y : e.max_y;
+    }
+    return e;
+  }
+  // Every point's look-ups from (x, y) to (x + span_x, y + span_y), offset by (x0, y0), fall inside w x h.
+  bool Inside(int x0, int y0, int span_x, int span_y, int w, int h) const {
+    return known && min_x + x0 >= 0 && min_y + y0 >= 0 && max_x + x0 + span_x < w && max_y + y0 + span_y < h;
+  }
+};
+
 struct CloudScorer {
   const MatchGrid& grid;
   Span<const MatchCell> cells;  // the rotated cloud
+  CloudExtent extent;
   std::uint32_t Score(int ox, int oy) const {
     std::uint32_t sum = 0;
     for (const MatchCell& c : cells) sum += grid.AtCell(c.x + ox, c.y + oy);
     return sum;
   }
-  std::uint32_t Bound(int bx, int by) const {
-    std::uint32_t sum = 0;
-    for (const MatchCell& c : cells) sum += grid.BoundAt(c.x + bx, c.y + by);
-    return sum;
+  // The coarse bounds of `count` (<= kRowBatch) coarse blocks side by side from (bx, by), in one
+  // pass over the cloud: out[i] is the bound of the block at (bx + kCoarseBlock i, by).
+  static constexpr int kRowBatch = 8;
+  void CoarseBounds(int bx, int by, int count, std::uint32_t* out) const {
+    constexpr int kC = MatchGrid::kCoarseBlock;
+    const int w = grid.width(), h = grid.height(), span = kC * (count - 1);
+    const std::uint8_t* table = grid.coarse_bounds_data();
+    std::uint32_t sums[kRowBatch] = {};
+    if (extent.Inside(bx, by, span, 0, w, h)) {
+      const int offset = by * w + bx;
+      for (const MatchCell& c : cells) {
+        const std::uint8_t* p = table + (c.y * w + c.x + offset);
+        for (int i = 0; i < count; ++i) sums[i] += p[i * kC];
+      }
+      for (int i = 0; i < count; ++i) out[i] = sums[i];
+      return;
+    }
+    for (const MatchCell& c : cells) {
+      const int x = c.x + bx, y = c.y + by;
+      if (x >= 0 && y >= 0 && x + span < w && y < h) {
+        const std::uint8_t* p = table + (y * w + x);
+        for (int i = 0; i < count; ++i) sums[i] += p[i * kC];
+      } else if (x < w && y < h && x + span > -kC && y > -kC) {  // else all its look-ups read 0
+        for (int i = 0; i < count; ++i) sums[i] += grid.CoarseBoundAt(x + i * kC, y);
+      }
+    }
+    for (int i = 0; i < count; ++i) out[i] = sums[i];
   }
-  std::uint32_t CoarseBound(int bx, int by) const {
-    std::uint32_t sum = 0;
-    for (const MatchCell& c : cells) sum += grid.CoarseBoundAt(c.x + bx, c.y + by);
-    return sum;
+  // Sixteen sums in one pass over the cloud, sums[4 j + i] for i, j < 4: Score(x0 + i, y0 + j)
+  // (the offsets of a block), or with kBounds the bound of the block at (x0 + kBlock i,
+  // y0 + kBlock j) (the blocks of a coarse block). The same integers as sixteen passes, at a
+  // fraction of the cost: a point whose sixteen look-ups all fall inside the grid (most) reads
+  // them at fixed distances from one address, with no bounds check each.
+  template <bool kBounds>
+  void Sixteen(int x0, int y0, std::uint32_t (&out)[16]) const {
+    constexpr int kStep = kBounds ? MatchGrid::kBlock : 1;
+    constexpr int kSpan = 3 * kStep;  // from a point's first look-up to its last, along each axis
+    // A look-up at or left of (below) this reads 0 (BoundAt: a block reaching in from the edge does not).
+    constexpr int kZeroAtOrBelow = kBounds ? -MatchGrid::kBlock : -1;
+    const int w = grid.width(), h = grid.height();
+    const std::uint8_t* table = kBounds ? grid.bounds_data() : grid.cells_data();
+    std::uint32_t sums[16] = {};
+    if (extent.Inside(x0, y0, kSpan, kSpan, w, h)) {
+      const int offset = y0 * w + x0;
+      for (const MatchCell& c : cells) {
+        const std::uint8_t* p = table + (c.y * w + c.x + offset);
+        for (int j = 0; j < 4; ++j, p += kStep * w) {
+          for (int i = 0; i < 4; ++i) sums[4 * j + i] += p[i * kStep];
+        }
+      }
+      for (int k = 0; k < 16; ++k) out[k] = sums[k];
+      return;
+    }
+    for (const MatchCell& c : cells) {
+      const int x = c.x + x0, y = c.y + y0;
+      if (x >= 0 && y >= 0 && x + kSpan < w && y + kSpan < h) {
+        const std::uint8_t* p = table + (y * w + x);
+        for (int j = 0; j < 4; ++j, p += kStep * w) {
+          for (int i = 0; i < 4; ++i) sums[4 * j + i] += p[i * kStep];
+        }
+      } else if (x < w && y < h && x + kSpan > kZeroAtOrBelow && y + kSpan > kZeroAtOrBelow) {  // else all read 0
+        for (int j = 0; j < 4; ++j) {
+          for (int i = 0; i < 4; ++i) {
+            sums[4 * j + i] += kBounds ? grid.BoundAt(x + i * kStep, y + j * kStep) : grid.AtCell(x + i, y + j);
+          }
+        }
+      }
+    }
+    for (int k = 0; k < 16; ++k) out[k] = sums[k];
   }
 };
 
@@ -199,11 +297,20 @@ struct SweepState {
 // The offsets of one kBlock x kBlock block (clipped to the window), each scored.
 void ScoreBlock(const CloudScorer& scorer, int bx, int by, int n, float dtheta, SweepState* st) {
   constexpr int kB = MatchGrid::kBlock;
-  for (int oy = by; oy < by + kB && oy <= n; ++oy) {
-    for (int ox = bx; ox < bx + kB && ox <= n; ++ox) {
+  // A block wholly within the excluded square around the first best (second sweep) scores nothing.
+  if (Excluded(st->exclude, st->angle_far, bx, by, st->sep_cells) &&
+      Excluded(st->exclude, st->angle_far, bx + kB - 1, by + kB - 1, st->sep_cells)) {
+    return;
+  }
+  std::uint32_t scores[16];
+  scorer.Sixteen<false>(bx, by, scores);
+  for (int j = 0; j < kB && by + j <= n; ++j) {
+    const int oy = by + j;
+    for (int i = 0; i < kB && bx + i <= n; ++i) {
+      const int ox = bx + i;
       if (Excluded(st->exclude, st->angle_far, ox, oy, st->sep_cells)) continue;
       ++st->evaluated;
-      st->Offer(Peak{static_cast<float>(scorer.Score(ox, oy)), static_cast<std::int16_t>(ox), static_cast<std::int16_t>(oy), dtheta});
+      st->Offer(Peak{static_cast<float>(scores[kB * j + i]), static_cast<std::int16_t>(ox), static_cast<std::int16_t>(oy), dtheta});
     }
   }
 }
@@ -221,7 +328,7 @@ void BeginAngle(const MatchGrid& grid, Span<const Point2> points, Pose2 initial,
     rotated[i] = MatchCell{ToMatchCell((w.x - grid.origin().x) * inv_res), ToMatchCell((w.y - grid.origin().y) * inv_res)};
   }
   if (first_angle && st->exclude == nullptr) {
-    const CloudScorer scorer{grid, Span<const MatchCell>(rotated.data(), points.size())};
+    const CloudScorer scorer{grid, Span<const MatchCell>(rotated.data(), points.size()), CloudExtent{}};
     ++st->evaluated;
     st->Offer(Peak{static_cast<float>(scorer.Score(0, 0)), 0, 0, 0.0f});
   }
@@ -232,16 +339,18 @@ void BeginAngle(const MatchGrid& grid, Span<const Point2> points, Pose2 initial,
 // `exclude` set, poses within the separation of it are skipped (the search for a second, separate
 // peak); without, the poses within max_second_ratio of the best go to `near_best`, and only
 // blocks that cannot reach that ratio are pruned.
-void SweepCoarseBlock(const MatchGrid& grid, std::size_t points, int cx, int cy, int n, float dtheta,
-                      Span<const MatchCell> rotated, SweepState* st) {
+void SweepCoarseBlock(const CloudScorer& scorer, int cx, int cy, int n, float dtheta, std::uint32_t coarse_bound,
+                      SweepState* st) {
   constexpr int kB = MatchGrid::kBlock, kC = MatchGrid::kCoarseBlock;
-  const CloudScorer scorer{grid, Span<const MatchCell>(rotated.data(), points)};
   ++st->evaluated;
-  if (st->Prune(scorer.CoarseBound(cx, cy))) return;
-  for (int by = cy; by < cy + kC && by <= n; by += kB) {
-    for (int bx = cx; bx < cx + kC && bx <= n; bx += kB) {
+  if (st->Prune(coarse_bound)) return;
+  static_assert(kC == 4 * kB, "a coarse block is 4 x 4 blocks");
+  std::uint32_t bounds[16];
+  scorer.Sixteen<true>(cx, cy, bounds);
+  for (int j = 0; j < 4 && cy + j * kB <= n; ++j) {
+    for (int i = 0; i < 4 && cx + i * kB <= n; ++i) {
       ++st->evaluated;
-      if (!st->Prune(scorer.Bound(bx, by))) ScoreBlock(scorer, bx, by, n, dtheta, st);
+      if (!st->Prune(bounds[4 * j + i])) ScoreBlock(scorer, cx + i * kB, cy + j * kB, n, dtheta, st);
     }
   }
 }
@@ -319,13 +428,30 @@ bool CorrelativeSearchRun::Continue(const MatchGrid& grid, Span<const Point2> po
   // Evaluations of one coarse block when nothing is pruned: a slice stops before one that might
   // not fit (but always does one).
   constexpr std::uint32_t kWorstBlock = kC * kC + (kC / MatchGrid::kBlock) * (kC / MatchGrid::kBlock) + 1;
+  // The coarse bounds of the blocks ahead in the row, computed together (CloudScorer::CoarseBounds):
+  // bounds[k] is block batch_start + k's at the current angle; a slice that stops mid-batch drops the rest.
+  std::uint32_t bounds[CloudScorer::kRowBatch];
+  int batch_start = 0, batch_size = 0;
+  CloudExtent extent;
   bool first = true;
   while (next_angle_ <= last && (first || st.evaluated + kWorstBlock <= max_evaluations)) {
     first = false;
     const float dtheta = static_cast<float>(AngleAt(next_angle_)) * step_;
-    if (next_block_ == 0) BeginAngle(grid, points, initial_, dtheta, next_angle_ == 0, config, rotated, &st);
-    SweepCoarseBlock(grid, points.size(), -n + (next_block_ % per_row) * kC, -n + (next_block_ / per_row) * kC, n, dtheta,
-                     Span<const MatchCell>(rotated.data(), points.size()), &st);
+    if (next_block_ == 0) {
+      BeginAngle(grid, points, initial_, dtheta, next_angle_ == 0, config, rotated, &st);
+      batch_size = 0;
+    }
+    const Span<const MatchCell> cloud(rotated.data(), points.size());
+    if (batch_size == 0) extent = CloudExtent::Of(cloud);  // a new angle, or a slice starting mid-angle
+    const CloudScorer scorer{grid, cloud, extent};
+    const int col = next_block_ % per_row, row = next_block_ / per_row;
+    if (next_block_ < batch_start || next_block_ >= batch_start + batch_size) {
+      const int left = per_row - col;
+      batch_start = next_block_;
+      batch_size = left < CloudScorer::kRowBatch ? left : CloudScorer::kRowBatch;
+      scorer.CoarseBounds(-n + col * kC, -n + row * kC, batch_size, bounds);
+    }
+    SweepCoarseBlock(scorer, -n + col * kC, -n + row * kC, n, dtheta, bounds[next_block_ - batch_start], &st);
     if (++next_block_ == blocks) {
       next_block_ = 0;
       ++next_angle_;

@@ -50,6 +50,11 @@ class MatchGrid {
                ? 0
                : coarse_bounds_[static_cast<std::size_t>((y < 0 ? 0 : y) * w_ + (x < 0 ? 0 : x))];
   }
+  // The rows of likelihoods and of kBlock bounds (width() bytes a row): the search reads them
+  // directly where a point's look-ups all fall inside the grid (no bounds check per look-up).
+  const std::uint8_t* cells_data() const { return cells_.data(); }
+  const std::uint8_t* bounds_data() const { return bounds_.data(); }
+  const std::uint8_t* coarse_bounds_data() const { return coarse_bounds_.data(); }
   static constexpr int kBlock = 4;
   static constexpr int kCoarseBlock = 4 * kBlock;
   float resolution_m() const { return res_; }

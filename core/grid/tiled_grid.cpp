@@ -1,6 +1,7 @@
 #include "core/grid/tiled_grid.hpp"
 
 #include <cstddef>
+#include <type_traits>
 
 #include "core/base/assert.hpp"
 
@@ -220,21 +221,27 @@ inline void TiledGrid::WalkSegment(CellSegment s, const Learning& l, std::uint32
     std::ptrdiff_t cell = kXMajor ? (lminor << 5) | start : (start << 5) | lminor;
     const std::int32_t to_edge = major_s > 0 ? 32 - start : start + 1;
     const std::int32_t n = left < to_edge ? left : to_edge;
-    std::int32_t k = n;
-    do {
-      if (tile != nullptr) UpdateCell<kStamped, kSettle>(tile, cell, l);
-      cell += major_step;
-      if (g > 0) {
-        g += two_minor - two_major;
-        cell += minor_step;
-        if (--room < 0) {
-          --k;
-          break;
+    // The run's loop is compiled twice, with and without a tile (pool full: the cells are only
+    // counted), so that the test is not made per cell.
+    const auto run = [&](auto has_tile) {
+      std::int32_t k = n;
+      do {
+        if (decltype(has_tile)::value) UpdateCell<kStamped, kSettle>(tile, cell, l);
+        cell += major_step;
+        if (g > 0) {
+          g += two_minor - two_major;
+          cell += minor_step;
+          if (--room < 0) {
+            --k;
+            break;
+          }
+        } else {
+          g += two_minor;
         }
-      } else {
-        g += two_minor;
-      }
-    } while (--k != 0);
+      } while (--k != 0);
+      return k;
+    };
+    const std::int32_t k = tile != nullptr ? run(std::true_type{}) : run(std::false_type{});
     const std::int32_t walked = n - k;
     const std::int32_t lmajor = start + walked * major_s;
     left -= walked;
