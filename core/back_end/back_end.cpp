@@ -280,8 +280,8 @@ bool BackEnd::AddClosure(Span<RegionalMap> regions, int region, int from, const 
   // PLICP alone is trusted with (BackEndConfig::unfollowed_closure_min_score).
   const bool unmistakable = search_score >= config_.unfollowed_closure_min_score;
   const Status added = g.AddEdgeIfConsistent(e, config_.optimizer, config_.max_edge_chi2,
-                                             unmistakable ? 3.0e38f : config_.search_base_m,
-                                             unmistakable ? 3.0e38f : config_.search_base_rad);
+                                             unmistakable ? PoseGraph::kUnbounded : config_.search_base_m,
+                                             unmistakable ? PoseGraph::kUnbounded : config_.search_base_rad);
   trace_.graph = added;
   if (added != Status::kOk) {
     ++counters_.loop_closures_rejected;

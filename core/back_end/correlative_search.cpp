@@ -165,7 +165,6 @@ std::int16_t ToMatchCell(float cells) {
 // Angles from the guess outwards (0, +1, -1, +2, ...): a good pose found early prunes the rest.
 int AngleAt(int k) { return (k % 2 == 1) ? (k + 1) / 2 : -(k / 2); }
 
-// The sums over the cloud (offset by whole match cells) of a grid's likelihoods and of its bounds.
 // The box of the rotated cloud, in match cells: an offset that keeps it inside the grid needs no
 // bounds check per point.
 struct CloudExtent {
@@ -191,6 +190,7 @@ struct CloudExtent {
   }
 };
 
+// The sums over the cloud (offset by whole match cells) of a grid's likelihoods and of its bounds.
 struct CloudScorer {
   const MatchGrid& grid;
   Span<const MatchCell> cells;  // the rotated cloud

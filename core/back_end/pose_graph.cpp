@@ -105,7 +105,7 @@ Status PoseGraph::AddEdgeIfConsistent(const GraphEdge& edge, const PoseGraphConf
   const Status added = AddOrReplaceEdge(edge);
   if (added != Status::kOk) return added;
   PoseGraphConfig plain = config;
-  plain.kernel_phi = 3.0e38f;  // no kernel: the question is whether the edge fits as it is
+  plain.kernel_phi = kUnbounded;  // no kernel: the question is whether the edge fits as it is
   const OptimizationResult r = Optimize(plain);
   bool consistent = r.status == Status::kOk || r.status == Status::kNotEnoughData;
   for (int k = 0; consistent && k < edge_count_; ++k) {

@@ -56,6 +56,7 @@ struct OptimizationResult {
 
 class PoseGraph {
  public:
+  static constexpr float kUnbounded = 3.0e38f;  // a bound that never binds
   // `normal` holds the packed normal equations: at least n(n+1)/2 floats for n = 3 (V - 1);
   // `rhs` and `step` at least 3 (V - 1) each.
   // `backup` (as many as `vertices`) and `chi2` (as many as `edges`) are AddEdgeIfConsistent's.
@@ -88,7 +89,7 @@ class PoseGraph {
   // robot placed by the closure) would then jump where the map does not. kPoolFull /
   // kInvalidArgument as AddOrReplaceEdge.
   Status AddEdgeIfConsistent(const GraphEdge& edge, const PoseGraphConfig& config, float max_edge_chi2,
-                             float max_own_error_m = 3.0e38f, float max_own_error_rad = 3.0e38f);
+                             float max_own_error_m = kUnbounded, float max_own_error_rad = kUnbounded);
 
   int vertex_count() const { return vertex_count_; }
   int edge_count() const { return edge_count_; }

@@ -43,28 +43,38 @@ class MissBatch {
 // and skipping them halves the screen's cost.
 constexpr float kScreenFromCells = 40.0f;
 
-// Whether hit p lies behind a settled occupied cell along its ray from `origin`: one of the cells
-// 2 to config.drop_hits_behind_settled_cells cells before it (the cell just before it is the
-// wall's own thickness). Settled: at the clamp, or counting contrary scans below it.
-bool BehindSettledWall(const TiledGrid& grid, Point2 origin, Point2 p, const GridConfig& config) {
-  // In cell units: the hit, and one cell's step back along the ray.
-  const float inv_res = 1.0f / config.resolution_m;
-  const float dx = p.x - origin.x, dy = p.y - origin.y;
-  const float d = std::sqrt(dx * dx + dy * dy);
-  const float d_cells = d * inv_res;
-  if (d_cells < kScreenFromCells) return false;
-  const float cx = p.x * inv_res, cy = p.y * inv_res, sx = dx / d, sy = dy / d;
-  const int band = grid.unsettle_occupied_after() > 1 ? grid.unsettle_occupied_after() - 1 : 0;
-  const int settled = config.clamp_max - band;
-  // A hit on a settled wall cell is the wall itself (a ray that grazes a wall has wall cells
-  // behind it along its own line): kept.
-  if (grid.Get(CellIndex{FloorToInt(cx), FloorToInt(cy)}) >= settled) return false;
-  for (int k = 2; k <= config.drop_hits_behind_settled_cells; ++k) {
-    const float back = static_cast<float>(k);
-    if (grid.Get(CellIndex{FloorToInt(cx - back * sx), FloorToInt(cy - back * sy)}) >= settled) return true;
+// Whether a hit lies behind a settled occupied cell along its ray from `origin`: one of the
+// cells 2 to config.drop_hits_behind_settled_cells cells before it (the cell just before it is
+// the wall's own thickness). Settled: at the clamp, or counting contrary scans below it.
+class WallScreen {
+ public:
+  WallScreen(const TiledGrid& grid, Point2 origin, const GridConfig& config)
+      : grid_(grid), origin_(origin), inv_res_(1.0f / config.resolution_m),
+        settled_(grid.SettledOccupiedFloor(config.clamp_max)), back_cells_(config.drop_hits_behind_settled_cells) {}
+
+  bool Behind(Point2 p, CellIndex cell) const {
+    const float dx = p.x - origin_.x, dy = p.y - origin_.y;
+    const float d = std::sqrt(dx * dx + dy * dy);
+    if (d * inv_res_ < kScreenFromCells) return false;
+    // A hit on a settled wall cell is the wall itself (a ray that grazes a wall has wall cells
+    // behind it along its own line): kept.
+    if (grid_.Get(cell) >= settled_) return false;
+    // In cell units: the hit, and one cell's step back along the ray.
+    const float cx = p.x * inv_res_, cy = p.y * inv_res_, sx = dx / d, sy = dy / d;
+    for (int k = 2; k <= back_cells_; ++k) {
+      const float back = static_cast<float>(k);
+      if (grid_.Get(CellIndex{FloorToInt(cx - back * sx), FloorToInt(cy - back * sy)}) >= settled_) return true;
+    }
+    return false;
   }
-  return false;
-}
+
+ private:
+  const TiledGrid& grid_;
+  Point2 origin_;
+  float inv_res_;
+  std::int32_t settled_;
+  int back_cells_;
+};
 
 // Marks a dropped hit in the scratch cells: outside every grid's box.
 constexpr CellIndex kDroppedHit{INT32_MIN, INT32_MIN};
@@ -82,10 +92,12 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
   // this scan can clear them (a miss would be skipped as a repeat).
   // Hits behind a settled wall are dropped (GridConfig::drop_hits_behind_settled_cells).
   const bool screen = grid.settle_at_bounds() && config.drop_hits_behind_settled_cells > 1;
+  const WallScreen walls(grid, origin, config);
   int dropped = 0;
   for (std::size_t i = 0; i < hits.size(); ++i) {
-    const bool behind = screen && BehindSettledWall(grid, origin, hits[i], config);
-    scratch[i] = behind ? kDroppedHit : CellOf(hits[i].x, hits[i].y, res);
+    const CellIndex cell = CellOf(hits[i].x, hits[i].y, res);
+    const bool behind = screen && walls.Behind(hits[i], cell);
+    scratch[i] = behind ? kDroppedHit : cell;
     dropped += behind ? 1 : 0;
   }
   const TiledGrid::SegmentStats h = grid.UpdateCells(Span<const CellIndex>(scratch.data(), hits.size()), config.hit_delta,

@@ -85,7 +85,7 @@ TiledGrid::Learning TiledGrid::LearningOf(std::int16_t delta, std::int16_t lo, s
   l.delta = delta;
   l.lo = lo;
   l.hi = hi;
-  l.hi_bottom = hi - (unsettle_occupied_after_ > 1 ? unsettle_occupied_after_ - 1 : 0);
+  l.hi_bottom = SettledOccupiedFloor(hi);
   l.lo_top = lo + (unsettle_free_after_ > 1 ? unsettle_free_after_ - 1 : 0);
   // Weak evidence: the bands as they are, but no count moves.
   l.occupied_after = may_unsettle ? unsettle_occupied_after_ : 0;

@@ -65,6 +65,11 @@ class TiledGrid {
     unsettle_free_after_ = free_after;
   }
   std::uint8_t unsettle_occupied_after() const { return unsettle_occupied_after_; }
+  // The lowest value a settled occupied cell holds under upper bound `hi`: the bound itself, or
+  // the bottom of the band its count of contrary scans lives in.
+  std::int32_t SettledOccupiedFloor(std::int32_t hi) const {
+    return hi - (unsettle_occupied_after_ > 1 ? unsettle_occupied_after_ - 1 : 0);
+  }
   std::uint8_t unsettle_free_after() const { return unsettle_free_after_; }
 
   // kUnknownCell outside the box or in a tile never written. Inline: insertion screens its hits
