@@ -22,11 +22,13 @@ struct FirstRegistrationStats {
 };
 
 // `grid_version` / `reference_version`: the score grid is rebuilt from `ref` only when a search
-// needs it and the reference changed since (versions differ). `prior_xy_scale` scales the
-// prediction's translation prior (FrontEndConfig::prior_info_xy): weaker for a guessed translation.
+// needs it and the reference changed since (versions differ). `prior_xy_scale` and
+// `prior_theta_scale` scale the prediction's priors (FrontEndConfig::prior_info_xy, _theta):
+// weaker for a guessed motion.
 RegistrationResult RegisterFirst(const RegistrationReference& ref, CoarseScoreGrid* grid, std::uint32_t* grid_version,
                                  std::uint32_t reference_version, Span<const Point2> points, const Pose2& previous,
                                  const Pose2& predicted, const FrontEndConfig& config, Span<Correspondence> scratch,
-                                 FirstRegistrationStats* stats, float prior_xy_scale = 1.0f);
+                                 FirstRegistrationStats* stats, float prior_xy_scale = 1.0f,
+                                 float prior_theta_scale = 1.0f);
 
 }  // namespace dpcr

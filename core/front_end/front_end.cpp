@@ -320,7 +320,7 @@ void FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, st
       // is followed by one PLICP-only attempt): the streak's cost stays bounded.
       RegisterFirst(*s_.submap_reference, consecutive_rejections_ % 2 == 0 ? s_.search_grid : nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
                     Span<const Point2>(s_.hits.data(), projected->hits), pose_, predicted, f, s_.correspondences, &fe_counters_.search,
-                    PriorXyScale(motion));
+                    PriorXyScale(motion), PriorThetaScale(motion));
   bent_ = false;
   if (!motion.wheels() && dt_us > 0 && !beams.empty()) r = RegisterRedeskewed(beams, motion, dt_us, projected, r);
   ++fe_counters_.first_registrations;
@@ -358,7 +358,7 @@ RegistrationResult FrontEnd::RegisterRedeskewed(Span<const Beam> beams, const Sc
   const RegistrationResult second =
       RegisterFirst(*s_.submap_reference, nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
                     Span<const Point2>(s_.hits.data(), projected->hits), pose_, first.pose, f, s_.correspondences, &fe_counters_.search,
-                    PriorXyScale(motion));
+                    PriorXyScale(motion), PriorThetaScale(motion));
   if (second.verdict == Status::kOk) return second;
   if (first.verdict != Status::kOk) return bent_ ? TrackBent(second, first.pose) : second;
   // Only the first one was accepted: its points back.

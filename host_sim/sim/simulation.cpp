@@ -64,6 +64,9 @@ Simulation::Simulation(const World& world, const SimConfig& config)
   period_us_ = static_cast<std::int64_t>(std::llround(1e6 / config.lidar.rate_hz));
   rate_hz_ = config.lidar.rate_hz;
   odom_period_us_ = static_cast<std::int64_t>(std::llround(1e6 / config.odometry.rate_hz));
+  // A robot does not drive before its lidar is up to speed: the plan waits out a spin-up
+  // revolution (no odometry could tell the mapper a turn made while the lidar saw nothing).
+  if (config.lidar.spin_up_valid_probability < 1.0) plan_paused_s_ = static_cast<double>(period_us_) * 1e-6;
   pending_scan_.type = SimEventType::kScan;
   pose_ = follower_->pose();
   ScheduleKidnaps();
@@ -102,7 +105,7 @@ void Simulation::ScheduleKidnaps() {
 void Simulation::AdvanceRobot(std::int64_t t_us) {
   if (!lifted_ && next_kidnap_ < planned_.size() && t_us >= planned_[next_kidnap_].lift_us) {
     const PlannedKidnap& p = planned_[next_kidnap_];
-    follower_->AdvanceTo(static_cast<double>(p.lift_us) * 1e-6 - carried_s_);
+    follower_->AdvanceTo(static_cast<double>(p.lift_us) * 1e-6 - plan_paused_s_);
     const Vec2 w = plan_.waypoints[p.waypoint];
     kidnaps_.push_back(KidnapEvent{p.lift_us, 0, follower_->pose(), Pose2d{w.x, w.y, p.theta}});
     lifted_ = true;
@@ -115,13 +118,13 @@ void Simulation::AdvanceRobot(std::int64_t t_us) {
       pose_ = 2 * (t_us - p.lift_us) < p.down_us - p.lift_us ? e.from : e.to;
       return;
     }
-    carried_s_ += static_cast<double>(p.down_us - p.lift_us) * 1e-6;
+    plan_paused_s_ += static_cast<double>(p.down_us - p.lift_us) * 1e-6;
     follower_->Relocate(e.to, p.waypoint);
     e.down_us = p.down_us;
     lifted_ = false;
     ++next_kidnap_;
   }
-  follower_->AdvanceTo(static_cast<double>(t_us) * 1e-6 - carried_s_);
+  follower_->AdvanceTo(static_cast<double>(t_us) * 1e-6 - plan_paused_s_);
   pose_ = follower_->pose();
 }
 

@@ -117,7 +117,7 @@ class Simulation {
   std::vector<KidnapEvent> kidnaps_;
   std::size_t next_kidnap_ = 0;
   bool lifted_ = false;
-  double carried_s_ = 0.0;  // time spent carried so far (the plan's clock stood still)
+  double plan_paused_s_ = 0.0;  // the plan's clock stood still this long: carried, or waiting for the lidar
   Pose2d pose_;             // the robot's true pose now
   People people_;
   Doors doors_;
