@@ -94,7 +94,8 @@ bool FrontEndOk(const FrontEndConfig& f, const GridConfig& g) {
                       In(f.submap_refit_min_points, 1, kMaxCount);
   const bool periods = In(f.submap_line_period, 1, kMaxCount) && In(f.region_line_period, 1, kMaxCount) &&
                        In(f.second_registration_period, 1, kMaxCount) && In(f.region_mature_scans, 1, kMaxCount) &&
-                       In(f.lost_after_rejections, 1, kMaxCount) && In(f.submap_restart_after_rejections, 1, kMaxCount) &&
+                       In(f.lost_after_rejections, 1, kMaxCount) && In(f.lidar_only_lost_after_second_rejections, 0, kMaxCount) &&
+                       In(f.submap_restart_after_rejections, 1, kMaxCount) &&
                        In(f.min_start_hits, 0, kMaxCount) && In(f.redeskew_min_m, 0.0f, 1.0f) &&
                        In(f.redeskew_min_rad, 0.0f, kPi) &&
                        In(f.uncertain_turn_rad, 0.0f, kPi);

@@ -24,7 +24,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   have_odom_ = have_scan_ = weak_match_ = have_gyro_yaw_ = false;
   last_gyro_yaw_ = 0.0f;
   search_grid_version_ = 0;
-  consecutive_rejections_ = 0;
+  consecutive_rejections_ = consecutive_second_rejections_ = 0;
   restart_pending_ = bent_ = false;
   bent_kept_out_ = 0;
   last_stamp_us_ = -1;
@@ -181,7 +181,9 @@ void FrontEnd::TrackRegions() {
       BeginLoopClosure(anchor_region_);
     } else if (config_.front_end.enable_registration &&
                ++scans_since_second_ >= static_cast<std::uint32_t>(config_.front_end.second_registration_period)) {
-      SecondRegistration();
+      const int current = regions_.current();
+      const bool mature = current >= 0 && regions_[current].scans_inserted >= static_cast<std::uint32_t>(config_.front_end.region_mature_scans);
+      consecutive_second_rejections_ = !SecondRegistration() && mature ? consecutive_second_rejections_ + 1 : 0;
     }
   }
 }

@@ -123,6 +123,8 @@ class FrontEnd {
   // the turn (XV-11 at 5 Hz, no odometry: 1-3 deg of heading lost per start or stop of a turn;
   // apartment seeds 1-10 LocErr_ave 0.55 m at 0.3 against several metres at 1).
   static constexpr float kPriorThetaWithoutHeading = 0.3f;
+  // Wheels or a gyro measure the turns (the newest odometry sample says which the robot has).
+  bool HeadingMeasured() const { return !odometry_.empty() && (odometry_.newest().has_wheels || odometry_.newest().has_gyro); }
   static float PriorThetaScale(const ScanMotion& motion) { return motion.wheels() || motion.gyro() ? 1.0f : kPriorThetaWithoutHeading; }
   // A rejected registration of a bent scan accepted for its pose when only the residual bound
   // failed, up to twice it (counted bent_tracked); `from`: where the registration started.
@@ -223,6 +225,7 @@ class FrontEnd {
   float last_gyro_yaw_ = 0.0f;
   bool have_scan_ = false;
   int consecutive_rejections_ = 0;
+  int consecutive_second_rejections_ = 0;  // in a mature regional map (TrackRegions)
   bool restart_pending_ = false;  // a submap restart is due, waiting for a scan with enough returns
   bool bent_ = false;             // the last scan's de-skew was doubtful (RegisterRedeskewed)
   std::uint8_t bent_kept_out_ = 0;  // bent scans kept out in a row

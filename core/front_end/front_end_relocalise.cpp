@@ -12,7 +12,11 @@ bool FrontEnd::LostNow() {
   const bool lifted = !odometry_.empty() && odometry_.newest().lifted;
   // A streak without a lift may be a robot that only lost track nearby: the second registration
   // may still find it where it thinks it is (as before the global search existed).
-  if (lifted || consecutive_rejections_ >= config_.front_end.lost_after_rejections) StartRelocalisation(!lifted);
+  // Without a heading sensor, a submap the regional map keeps rejecting has slipped (FrontEndConfig::
+  // lidar_only_lost_after_second_rejections); it may still be near where it believes.
+  const int slipped_after = config_.front_end.lidar_only_lost_after_second_rejections;
+  const bool slipped = slipped_after > 0 && !HeadingMeasured() && consecutive_second_rejections_ >= slipped_after;
+  if (lifted || slipped || consecutive_rejections_ >= config_.front_end.lost_after_rejections) StartRelocalisation(!lifted);
   return relocalising_;
 }
 
@@ -20,7 +24,7 @@ void FrontEnd::StartRelocalisation(bool may_be_near) {
   relocalising_ = true;
   may_be_near_ = may_be_near;
   restart_submap_ = true;  // what the submap holds may be of another place
-  consecutive_rejections_ = 0;
+  consecutive_rejections_ = consecutive_second_rejections_ = 0;
   localiser_.Cancel();
   // A loop-closure search under way is void: the global search takes its grid (the lent table),
   // and the submap it placed is gone.

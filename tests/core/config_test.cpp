@@ -148,6 +148,7 @@ std::vector<BadField> BadFields() {
       INT_FIELD(front_end.region_mature_scans, kCount),
       FLOAT_FIELD(front_end.reference_inner_margin_m, kNonNegative),
       INT_FIELD(front_end.lost_after_rejections, kCount),
+      INT_FIELD(front_end.lidar_only_lost_after_second_rejections, (std::vector<double>{-1.0, -2e9, 1e9})),
       INT_FIELD(front_end.submap_restart_after_rejections, kCount),
       FLOAT_FIELD(front_end.uncertain_turn_rad, (std::vector<double>{-1.0, kNaN, kInf, 4.0})),
       FLOAT_FIELD(front_end.prior_info_xy, kNonNegative),

@@ -120,6 +120,7 @@ TEST_CASE("An in-place spin at 120 deg/s is tracked without odometry") {
   const SpinResult r = Spin(false);
   REQUIRE(r.scans == 29);
   CHECK(r.rejected * 10 < r.scans);  // fewer than 10 % rejected
+  INFO("heading error " << r.heading_error << " rad");
   CHECK(r.heading_error < 0.035f);  // 2° after 1.3 turns
 }
 
@@ -136,5 +137,6 @@ TEST_CASE("A robot at rest after a turn is held without odometry") {
   // room does not provoke that case: docs/front-end-accuracy.md.)
   const SpinResult r = Spin(false, Turn, 3.0f, true);
   CHECK(r.rejected * 10 < r.scans);
+  INFO("worst at rest " << r.worst_at_rest << " rad");
   CHECK(r.worst_at_rest < 0.035f);
 }
