@@ -3,7 +3,8 @@
 // frames -> WheelCanDecoder -> DiffDriveOdometry -> odometry samples carrying the last gyro
 // rate, stamped in host time through the wheel board's clock (DeviceTimeBase: minimum latency,
 // drift followed), and marked lifted while the status frames say the wheels are off the floor
-// (hal/wheel_lift_state.hpp). Both go to a DeviceSink: the mapper, or a wrapper that also counts or times.
+// (hal/wheel_lift_state.hpp). Both go to a DeviceSink: the mapper, or a wrapper that also counts
+// or times.
 // Allocation-free: all state lives in the object (~71 KiB with the vacuum scan: build it once, at
 // start-up, off the stack).
 #pragma once
