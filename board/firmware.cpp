@@ -347,11 +347,13 @@ void Firmware::PrintSummary() {
   std::fprintf(log_,
                "dpcr-firmware: summary scans=%u rejected=%u odometry=%u packets=%u bad=%u resyncs=%u "
                "discarded=%u out_of_range=%u revolutions=%u gaps=%u dropouts=%u partial_dropped=%u ticks=%u gyro=%u "
-               "can_lost=%u dup=%u reord=%u err=%u bad_dlc=%u foreign=%u wheel_gaps=%u can_failures=%u "
+               "status=%u reserved_flags=%u lifts=%u lifted_samples=%u can_lost=%u dup=%u reord=%u err=%u bad_dlc=%u "
+               "foreign=%u wheel_gaps=%u can_failures=%u "
                "wheel_silences=%u saves=%u/%u deferred=%u regions=%d peak_rss_kb=%ld\n",
                counters_.scans, mapper_->counters().scans_rejected, c.odometry, c.lidar.packets, c.lidar.bad_packets,
                c.lidar.resyncs, c.lidar.discarded_bytes, c.lidar.out_of_range, c.lidar.revolutions, c.lidar.gaps,
-               c.lidar.dropouts, c.lidar.partial_dropped, c.can.ticks_frames, c.can.gyro_frames, c.can.lost,
+               c.lidar.dropouts, c.lidar.partial_dropped, c.can.ticks_frames, c.can.gyro_frames,
+               c.can.status_frames, c.can.reserved_flags, c.lifts, c.lifted_samples, c.can.lost,
                c.can.duplicated, c.can.reordered, c.can.error_frames, c.can.bad_dlc, c.can.foreign, c.wheel_gaps,
                counters_.can_failures, counters_.wheel_silences, counters_.saves_ok, counters_.saves_requested,
                counters_.saves_deferred, mapper_->region_count(), static_cast<long>(usage.ru_maxrss));

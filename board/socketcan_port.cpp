@@ -19,6 +19,25 @@ namespace dpcr::board {
 static_assert(kCanEffFlag == CAN_EFF_FLAG && kCanRtrFlag == CAN_RTR_FLAG && kCanErrFlag == CAN_ERR_FLAG,
               "hal CAN flags must match Linux can_id flags");
 
+namespace {
+
+// Each protocol ID as a standard data frame (the EFF and RTR flags in the mask must be clear).
+constexpr std::uint32_t kExactStandardFrame = CAN_SFF_MASK | CAN_EFF_FLAG | CAN_RTR_FLAG;
+const can_filter kFilters[] = {
+    {kWheelTicksCanId, kExactStandardFrame},
+    {kGyroCanId, kExactStandardFrame},
+    {kStatusCanId, kExactStandardFrame},
+};
+
+}  // namespace
+
+bool WheelFiltersPass(std::uint32_t can_id) {
+  for (const can_filter& f : kFilters) {
+    if ((can_id & f.can_mask) == (f.can_id & f.can_mask)) return true;  // CAN_RAW's rule
+  }
+  return false;
+}
+
 int OpenSocketCan(const std::string& interface, std::string* error) {
   const int fd = ::socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW);
   if (fd < 0) {
@@ -37,12 +56,8 @@ int OpenSocketCan(const std::string& interface, std::string* error) {
     ::close(fd);
     return -1;
   }
-  const can_filter filters[2] = {
-      {kWheelTicksCanId, CAN_SFF_MASK | CAN_EFF_FLAG | CAN_RTR_FLAG},
-      {kGyroCanId, CAN_SFF_MASK | CAN_EFF_FLAG | CAN_RTR_FLAG},
-  };
   const can_err_mask_t err_mask = CAN_ERR_MASK;
-  if (::setsockopt(fd, SOL_CAN_RAW, CAN_RAW_FILTER, filters, sizeof(filters)) != 0 ||
+  if (::setsockopt(fd, SOL_CAN_RAW, CAN_RAW_FILTER, kFilters, sizeof(kFilters)) != 0 ||
       ::setsockopt(fd, SOL_CAN_RAW, CAN_RAW_ERR_FILTER, &err_mask, sizeof(err_mask)) != 0) {
     *error = interface + ": setsockopt(CAN_RAW_FILTER): " + DescribeErrno(errno);
     ::close(fd);

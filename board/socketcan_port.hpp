@@ -2,6 +2,7 @@
 // firmware test passes one end of a socketpair carrying struct can_frame: same code path).
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "board/unique_fd.hpp"
@@ -11,8 +12,11 @@
 namespace dpcr::board {
 
 // Opens a CAN_RAW socket on `interface`, non-blocking, with receive filters for the wheel
-// protocol IDs (0x120, 0x121) and error frames. -1 with "interface: step: strerror" on failure.
+// protocol IDs (0x120, 0x121, 0x122) and error frames. -1 with "interface: step: strerror" on failure.
 int OpenSocketCan(const std::string& interface, std::string* error);
+// Whether a data frame with Linux `can_id` passes those ID filters, by the kernel's CAN_RAW rule
+// (error frames pass through CAN_RAW_ERR_FILTER instead).
+bool WheelFiltersPass(std::uint32_t can_id);
 
 // Reads one struct can_frame from `fd` (non-blocking). kWouldBlock when none is queued,
 // kEndOfStream when the peer closed, kIoError (errno kept) otherwise.

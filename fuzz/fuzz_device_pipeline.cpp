@@ -22,6 +22,7 @@ class CheckingSink final : public dpcr::DeviceSink {
     FUZZ_CHECK(std::isfinite(s.pose.x) && std::isfinite(s.pose.y) && std::isfinite(s.pose.theta));
     FUZZ_CHECK(!s.has_gyro || std::isfinite(s.gyro_yaw_rate));
     ++odometry;
+    if (s.lifted) ++lifted;
   }
   void AddScan(const dpcr::DeviceScan& scan) override {
     FUZZ_CHECK(scan.beams.size() <= static_cast<std::size_t>(dpcr::VacuumProfile::kMaxBeams));
@@ -32,6 +33,7 @@ class CheckingSink final : public dpcr::DeviceSink {
     ++scans;
   }
   std::uint32_t odometry = 0;
+  std::uint32_t lifted = 0;
   std::uint32_t scans = 0;
 };
 
@@ -74,6 +76,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       i += n;
     }
   }
+  const dpcr::DevicePipelineCounters c = pipeline->counters();
+  FUZZ_CHECK(c.odometry == sink.odometry && c.lifted_samples == sink.lifted && c.lifts <= c.can.status_frames);
   delete pipeline;
   return 0;
 }

@@ -1,5 +1,5 @@
-// CAN frames -> WheelCanDecoder -> DiffDriveOdometry: no crash, time never runs backwards, the
-// counters add up, and the integrated pose stays finite.
+// CAN frames -> WheelCanDecoder -> DiffDriveOdometry: no crash, time never runs backwards (each
+// stream), the counters add up, and the integrated pose stays finite.
 // Input: 13 bytes per frame (4-byte id little-endian, DLC, 8 data bytes).
 #include <cmath>
 #include <cstddef>
@@ -9,11 +9,12 @@
 #include "fuzz/fuzz_check.hpp"
 #include "hal/diff_drive_odometry.hpp"
 #include "hal/wheel_can_protocol.hpp"
+#include "hal/wheel_lift_state.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   dpcr::WheelCanDecoder decoder;
   dpcr::DiffDriveOdometry odometry;
-  std::int64_t last_ticks_time = INT64_MIN, last_gyro_time = INT64_MIN;
+  std::int64_t last_ticks_time = INT64_MIN, last_gyro_time = INT64_MIN, last_status_time = INT64_MIN;
   std::uint32_t frames = 0;
   for (std::size_t i = 0; i + 13 <= size; i += 13) {
     dpcr::CanFrame frame;
@@ -36,11 +37,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         last_gyro_time = decoder.gyro().device_time_us;
         FUZZ_CHECK(std::fabs(decoder.gyro().yaw_rate_rad_s) <= 32.768f);
         break;
+      case dpcr::CanDecodeResult::kStatus:
+        FUZZ_CHECK(decoder.status().device_time_us >= last_status_time);
+        last_status_time = decoder.status().device_time_us;
+        {  // the lift state's comparison across streams stays within half the wrap
+          const std::int64_t bound = dpcr::kWheelTimeWrapUnits / 2 * dpcr::kWheelTimeUnitUs;
+          const std::int64_t d = dpcr::DeviceTimeDifferenceUs(last_status_time, last_ticks_time == INT64_MIN ? 0 : last_ticks_time);
+          FUZZ_CHECK(d >= -bound && d < bound);
+        }
+        break;
       default:
         break;
     }
   }
   const dpcr::WheelCanCounters& c = decoder.counters();
-  FUZZ_CHECK(c.ticks_frames + c.gyro_frames + c.foreign + c.error_frames + c.bad_dlc + c.duplicated + c.reordered == frames);
+  FUZZ_CHECK(c.ticks_frames + c.gyro_frames + c.status_frames + c.foreign + c.error_frames + c.bad_dlc + c.duplicated +
+                 c.reordered ==
+             frames);
+  FUZZ_CHECK(c.reserved_flags <= c.status_frames);
   return 0;
 }

@@ -61,7 +61,8 @@ void AppendFrame(Bytes* b, const dpcr::CanFrame& f) {
   b->insert(b->end(), f.data, f.data + 8);
 }
 
-// Ticks and gyro frames with a counter rollover, a lost and a duplicated frame.
+// Ticks, gyro and status frames with a counter rollover, a lost and a duplicated frame, a lift
+// and a put-down, and a status frame with reserved flags set.
 std::vector<dpcr::CanFrame> WheelFrames() {
   std::vector<dpcr::CanFrame> frames;
   for (int k = 0; k < 6; ++k) {
@@ -76,6 +77,13 @@ std::vector<dpcr::CanFrame> WheelFrames() {
     g.sequence = static_cast<std::uint8_t>(250 + k);
     g.time_10us = t.time_10us;
     frames.push_back(dpcr::EncodeGyroFrame(g));
+    if (k == 1 || k == 3 || k == 5) {
+      dpcr::StatusFrame status;
+      status.flags = k == 1 ? dpcr::kStatusLiftedFlag : k == 5 ? 0x80 : 0;
+      status.sequence = static_cast<std::uint8_t>(k);
+      status.time_10us = t.time_10us;
+      frames.push_back(dpcr::EncodeStatusFrame(status));
+    }
   }
   return frames;
 }

@@ -29,6 +29,13 @@ void DevicePipeline::FeedAllLidar(const std::uint8_t* data, std::size_t size, st
 
 void DevicePipeline::FeedCan(const CanFrame& frame, std::int64_t received_us) {
   const CanDecodeResult decoded = wheels_.Feed(frame);
+  if (decoded == CanDecodeResult::kStatus) {
+    const RobotStatus& status = wheels_.status();
+    if (status.lifted && !last_status_lifted_) ++lifts_;
+    last_status_lifted_ = status.lifted;
+    lift_.Observe(status);
+    return;
+  }
   if (decoded == CanDecodeResult::kGyro) {
     gyro_ = wheels_.gyro();
     have_gyro_ = true;
@@ -41,8 +48,8 @@ void DevicePipeline::FeedCan(const CanFrame& frame, std::int64_t received_us) {
       sample.has_wheels = false;
       sample.has_gyro = true;
       sample.gyro_yaw_rate = gyro_.yaw_rate_rad_s;
-      ++odometry_samples_;
-      sink_->AddOdometry(sample);
+      sample.lifted = lift_.LiftedAt(gyro_.device_time_us);
+      Send(sample);
     }
     return;
   }
@@ -57,7 +64,13 @@ void DevicePipeline::FeedCan(const CanFrame& frame, std::int64_t received_us) {
   OdometrySample sample = odometry_.Update(wheels_.ticks(), stamp_us);
   sample.has_gyro = have_gyro_;
   sample.gyro_yaw_rate = gyro_.yaw_rate_rad_s;
+  sample.lifted = lift_.LiftedAt(wheels_.ticks().device_time_us);
+  Send(sample);
+}
+
+void DevicePipeline::Send(const OdometrySample& sample) {
   ++odometry_samples_;
+  if (sample.lifted) ++lifted_samples_;
   sink_->AddOdometry(sample);
 }
 
@@ -68,6 +81,8 @@ DevicePipelineCounters DevicePipeline::counters() const {
   c.scans = scans_;
   c.odometry = odometry_samples_;
   c.wheel_gaps = wheel_gaps_;
+  c.lifts = lifts_;
+  c.lifted_samples = lifted_samples_;
   return c;
 }
 

@@ -2,7 +2,9 @@
 // host replay: lidar bytes -> LidarStream (LD06/XV-11 decoder + ScanAssembler) -> scans; CAN
 // frames -> WheelCanDecoder -> DiffDriveOdometry -> odometry samples carrying the last gyro
 // rate, stamped in host time through the wheel board's clock (DeviceTimeBase: minimum latency,
-// drift followed). Both go to a DeviceSink: the mapper, or a wrapper that also counts or times.
+// drift followed), and marked lifted while the status frames say the wheels are off the floor
+// (hal/wheel_lift_state.hpp). Both go to a DeviceSink: the mapper, or a wrapper that also counts
+// or times.
 // Allocation-free: all state lives in the object (~71 KiB with the vacuum scan: build it once, at
 // start-up, off the stack).
 #pragma once
@@ -18,6 +20,7 @@
 #include "hal/diff_drive_odometry.hpp"
 #include "hal/lidar_stream.hpp"
 #include "hal/wheel_can_protocol.hpp"
+#include "hal/wheel_lift_state.hpp"
 
 namespace dpcr {
 
@@ -49,6 +52,8 @@ struct DevicePipelineCounters {
   std::uint32_t scans = 0;
   std::uint32_t odometry = 0;
   std::uint32_t wheel_gaps = 0;  // wheel gaps the odometry resumed after
+  std::uint32_t lifts = 0;           // status frames that said "lifted" after one that did not
+  std::uint32_t lifted_samples = 0;  // odometry samples sent marked lifted
 };
 
 class DevicePipeline {
@@ -69,7 +74,9 @@ class DevicePipeline {
   // One CAN frame received at host time `received_us`. A ticks frame becomes an odometry sample
   // stamped on the wheel board's clock (in host time: hal/device_time_base.hpp); a gyro frame
   // updates the rate the next samples carry, and once two have come without a ticks frame, none
-  // ever (a robot without wheel encoders), each is a sample of its own (has_wheels false). Other frames are counted and ignored.
+  // ever (a robot without wheel encoders), each is a sample of its own (has_wheels false). A
+  // status frame sets whether the samples from its device time on are lifted. Other frames are
+  // counted and ignored.
   void FeedCan(const CanFrame& frame, std::int64_t received_us);
 
   DevicePipelineCounters counters() const;
@@ -80,12 +87,16 @@ class DevicePipeline {
   const DeviceTimeBase& wheel_time() const { return wheel_time_; }
 
  private:
+  void Send(const OdometrySample& sample);
+
   DeviceSink* sink_;
   LidarStream lidar_;
   WheelCanDecoder wheels_;
   DiffDriveOdometry odometry_;
   DeviceTimeBase wheel_time_;
   GyroRate gyro_;
+  WheelLiftState lift_;
+  bool last_status_lifted_ = false;
   bool have_gyro_ = false;
   std::uint32_t gyro_frames_without_ticks_ = 0;
   DeviceScan scan_;
@@ -94,6 +105,8 @@ class DevicePipeline {
   std::uint32_t scans_ = 0;
   std::uint32_t odometry_samples_ = 0;
   std::uint32_t wheel_gaps_ = 0;
+  std::uint32_t lifts_ = 0;
+  std::uint32_t lifted_samples_ = 0;
 };
 
 }  // namespace dpcr

@@ -33,6 +33,17 @@ CanFrame EncodeGyroFrame(const GyroFrame& frame) {
   return out;
 }
 
+CanFrame EncodeStatusFrame(const StatusFrame& frame) {
+  CanFrame out;
+  out.id = kStatusCanId;
+  out.dlc = kStatusDlc;
+  out.data[0] = frame.flags;
+  out.data[1] = frame.sequence;
+  StoreLe24(&out.data[2], frame.time_10us);
+  return out;
+}
+
+// kTicks here means "accepted" for every stream.
 CanDecodeResult WheelCanDecoder::CheckSequence(Stream* stream, std::uint8_t sequence) {
   if (!stream->started) return CanDecodeResult::kTicks;
   const int step = (sequence - stream->last_sequence + 256) % 256;
@@ -65,38 +76,52 @@ CanDecodeResult WheelCanDecoder::Feed(const CanFrame& frame) {
     ++counters_.error_frames;
     return CanDecodeResult::kErrorFrame;
   }
-  if ((frame.id & (kCanEffFlag | kCanRtrFlag)) != 0 ||
-      (frame.id != kWheelTicksCanId && frame.id != kGyroCanId)) {
+  if ((frame.id & (kCanEffFlag | kCanRtrFlag)) != 0) {
     ++counters_.foreign;
     return CanDecodeResult::kIgnored;
   }
-  if (frame.id == kWheelTicksCanId) {
-    if (frame.dlc != kWheelTicksDlc) {
-      ++counters_.bad_dlc;
-      return CanDecodeResult::kBadDlc;
-    }
-    const std::uint8_t sequence = frame.data[4];
-    const CanDecodeResult r = CheckSequence(&ticks_stream_, sequence);
-    if (r != CanDecodeResult::kTicks) return r;
-    const std::uint16_t left = LoadLe16(&frame.data[0]);
-    const std::uint16_t right = LoadLe16(&frame.data[2]);
-    const bool first = !ticks_stream_.started;
-    if (first) {
-      ticks_.left_ticks = left;
-      ticks_.right_ticks = right;
-    } else {
-      ticks_.left_ticks += Wrap16(left - last_left_);
-      ticks_.right_ticks += Wrap16(right - last_right_);
-    }
-    last_left_ = left;
-    last_right_ = right;
-    AdvanceTime(&ticks_stream_, LoadLe24(&frame.data[5]), first);
-    ticks_stream_.started = true;
-    ticks_stream_.last_sequence = sequence;
-    ticks_.device_time_us = ticks_stream_.time_us;
-    ++counters_.ticks_frames;
-    return CanDecodeResult::kTicks;
+  switch (frame.id) {
+    case kWheelTicksCanId:
+      return FeedTicks(frame);
+    case kGyroCanId:
+      return FeedGyro(frame);
+    case kStatusCanId:
+      return FeedStatus(frame);
+    default:
+      ++counters_.foreign;
+      return CanDecodeResult::kIgnored;
   }
+}
+
+CanDecodeResult WheelCanDecoder::FeedTicks(const CanFrame& frame) {
+  if (frame.dlc != kWheelTicksDlc) {
+    ++counters_.bad_dlc;
+    return CanDecodeResult::kBadDlc;
+  }
+  const std::uint8_t sequence = frame.data[4];
+  const CanDecodeResult r = CheckSequence(&ticks_stream_, sequence);
+  if (r != CanDecodeResult::kTicks) return r;
+  const std::uint16_t left = LoadLe16(&frame.data[0]);
+  const std::uint16_t right = LoadLe16(&frame.data[2]);
+  const bool first = !ticks_stream_.started;
+  if (first) {
+    ticks_.left_ticks = left;
+    ticks_.right_ticks = right;
+  } else {
+    ticks_.left_ticks += Wrap16(left - last_left_);
+    ticks_.right_ticks += Wrap16(right - last_right_);
+  }
+  last_left_ = left;
+  last_right_ = right;
+  AdvanceTime(&ticks_stream_, LoadLe24(&frame.data[5]), first);
+  ticks_stream_.started = true;
+  ticks_stream_.last_sequence = sequence;
+  ticks_.device_time_us = ticks_stream_.time_us;
+  ++counters_.ticks_frames;
+  return CanDecodeResult::kTicks;
+}
+
+CanDecodeResult WheelCanDecoder::FeedGyro(const CanFrame& frame) {
   if (frame.dlc != kGyroDlc) {
     ++counters_.bad_dlc;
     return CanDecodeResult::kBadDlc;
@@ -112,6 +137,27 @@ CanDecodeResult WheelCanDecoder::Feed(const CanFrame& frame) {
   gyro_.yaw_rate_rad_s = static_cast<float>(static_cast<std::int16_t>(LoadLe16(&frame.data[0]))) * 0.001f;
   ++counters_.gyro_frames;
   return CanDecodeResult::kGyro;
+}
+
+CanDecodeResult WheelCanDecoder::FeedStatus(const CanFrame& frame) {
+  if (frame.dlc != kStatusDlc) {
+    ++counters_.bad_dlc;
+    return CanDecodeResult::kBadDlc;
+  }
+  const std::uint8_t sequence = frame.data[1];
+  const CanDecodeResult r = CheckSequence(&status_stream_, sequence);
+  if (r != CanDecodeResult::kTicks) return r;
+  const std::uint8_t flags = frame.data[0];
+  // A newer sender may define more flags: the frame still says what bit 0 says.
+  if ((flags & kStatusReservedFlags) != 0) ++counters_.reserved_flags;
+  const bool first = !status_stream_.started;
+  AdvanceTime(&status_stream_, LoadLe24(&frame.data[2]), first);
+  status_stream_.started = true;
+  status_stream_.last_sequence = sequence;
+  status_.device_time_us = status_stream_.time_us;
+  status_.lifted = (flags & kStatusLiftedFlag) != 0;
+  ++counters_.status_frames;
+  return CanDecodeResult::kStatus;
 }
 
 }  // namespace dpcr

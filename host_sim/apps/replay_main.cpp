@@ -276,7 +276,8 @@ int ReplayDevice(const Options& opt) {
   metrics["input"] = {{"uart", opt.uart}, {"candump", opt.candump}, {"lidar", lidar_name},
                       {"packets", c.lidar.packets}, {"bad_packets", c.lidar.bad_packets}, {"resyncs", c.lidar.resyncs},
                       {"discarded_bytes", c.lidar.discarded_bytes}, {"revolutions", c.lidar.revolutions},
-                      {"gaps", c.lidar.gaps}, {"decimated", c.lidar.decimated}, {"odometry", c.odometry}};
+                      {"gaps", c.lidar.gaps}, {"decimated", c.lidar.decimated}, {"odometry", c.odometry},
+                      {"status_frames", c.can.status_frames}, {"lifts", c.lifts}, {"lifted_odometry", c.lifted_samples}};
   metrics = dpcr::output::WriteRunOutputs(opt.out, dpcr::output::RenderFused(mapper), run, metrics);
   PrintSummary(run, metrics, opt.out);
   SaveMapIfAsked(opt, mapper);

@@ -282,7 +282,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--fixed-plan", opt.fixed_plan, "every seed drives the world's own start pose and canonical plan (only the noise varies)");
   app.add_option("--out", opt.out, "output directory (default: out/<world>)");
-  app.add_option("--emit-device", opt.emit_device, "also write the run as device files: DIR/lidar.uart (LD06) + DIR/wheels.log (candump)");
+  app.add_option("--emit-device", opt.emit_device, "also write the run as device files: DIR/lidar.uart (LD06) + DIR/wheels.log (candump: ticks 0x120, gyro 0x121, wheel-lift status 0x122)");
   app.add_option("--wheel-clock-ppm", opt.wheel_clock_ppm,
                  "--emit-device: the wheel board's clock runs this fast against the host's (ppm); the bus adds "
                  "0.2 ms latency, 0.5 ms mean jitter and 1 % of frames up to 20 ms late")

@@ -43,8 +43,10 @@ bool DeviceEmitter::AddScan(const DeviceScan& scan) {
 }
 
 void DeviceEmitter::AddOdometry(const OdometrySample& sample) {
+  const std::size_t first_frame = can_.size();
   if (!sample.has_wheels) {
     if (sample.has_gyro) AddGyro(sample);
+    AddStatusIfDue(sample, first_frame);
     return;
   }
   if (started_) {
@@ -74,6 +76,28 @@ void DeviceEmitter::AddOdometry(const OdometrySample& sample) {
   r.interface = config_.can_interface;
   r.frame = EncodeWheelFrame(f);
   can_.push_back(r);
+  AddStatusIfDue(sample, first_frame);
+}
+
+void DeviceEmitter::AddStatusIfDue(const OdometrySample& sample, std::size_t first_frame) {
+  if (config_.status_period_us <= 0 || first_frame >= can_.size()) return;
+  const std::int64_t device_us = DeviceTimeUs(sample.stamp_us);
+  const bool due = !status_sent_ || sample.lifted != status_lifted_ || device_us - status_device_us_ >= config_.status_period_us;
+  if (!due) return;
+  StatusFrame s;
+  s.flags = sample.lifted ? kStatusLiftedFlag : 0;
+  s.sequence = status_seq_++;
+  s.time_10us = static_cast<std::uint32_t>((device_us / kWheelTimeUnitUs) % kUnitsWrap);
+  // Sent just before the sample's other frames, arriving with the first of them (no draw from the
+  // bus's jitter: the other frames arrive as they did before status frames existed).
+  CandumpRecord r;
+  r.stamp_us = can_[first_frame].stamp_us;
+  r.interface = config_.can_interface;
+  r.frame = EncodeStatusFrame(s);
+  can_.insert(can_.begin() + static_cast<std::ptrdiff_t>(first_frame), r);
+  status_sent_ = true;
+  status_lifted_ = sample.lifted;
+  status_device_us_ = device_us;
 }
 
 std::int64_t DeviceEmitter::DeviceTimeUs(std::int64_t stamp_us) {

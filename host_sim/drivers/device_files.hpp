@@ -46,6 +46,9 @@ struct DeviceFilesConfig {
   double can_spike_fraction = 0.0;
   double can_spike_us = 0.0;
   std::uint32_t bus_seed = 1;
+  // Status frames (0x122: the wheels' lift flag) on every change and at least this often, in
+  // device time; 0: none (a robot without them, as in logs from before the frame existed).
+  std::int64_t status_period_us = 100000;
 };
 
 // A wheel board 35 ppm fast with its clock started 5 s before the host's run, 0.2 ms bus latency,
@@ -70,7 +73,9 @@ bool ReadDeviceDescription(const std::string& path, DeviceOptions* options, std:
 // Writes DIR/lidar.uart, DIR/wheels.log and DIR/device.json (DeviceEmitter::Open/Close). Scans
 // become LD06 or XV-11 packets, one capture chunk per packet at its arrival time; odometry poses
 // become wheel ticks (inverse diff-drive on each increment, cumulative rounding) plus a gyro frame
-// when present; a sample without wheels (has_wheels false) only its gyro frame.
+// when present; a sample without wheels (has_wheels false) only its gyro frame. The samples' lift
+// flag becomes status frames (on each change and every status_period_us), each sent first among
+// the frames of its instant and arriving with the first of them: its state holds for them.
 class DeviceEmitter {
  public:
   explicit DeviceEmitter(const DeviceFilesConfig& config = DeviceFilesConfig())
@@ -82,6 +87,8 @@ class DeviceEmitter {
 
  private:
   void AddGyro(const OdometrySample& sample);
+  // A status frame before the frames from `first_frame` on (the sample's), when one is due.
+  void AddStatusIfDue(const OdometrySample& sample, std::size_t first_frame);
   // The wheel board's clock at host time `stamp_us`, and a frame's arrival (in order).
   std::int64_t DeviceTimeUs(std::int64_t stamp_us);
   std::int64_t ArrivalUs(std::int64_t stamp_us);
@@ -98,6 +105,10 @@ class DeviceEmitter {
   double right_m_ = 0.0;
   std::uint8_t ticks_seq_ = 0;
   std::uint8_t gyro_seq_ = 0;
+  std::uint8_t status_seq_ = 0;
+  bool status_sent_ = false;
+  bool status_lifted_ = false;
+  std::int64_t status_device_us_ = 0;  // device time of the last status frame
 };
 
 // Replays a UART capture + candump log in time order through a DevicePipeline into `sink`: a

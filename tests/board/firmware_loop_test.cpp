@@ -293,6 +293,31 @@ TEST_CASE("firmware loop: wheels silent (frames missing) -> lidar alone; their r
   CHECK(std::fabs(dpcr::NormalizeAngle(a.theta - o.pose.theta)) < 0.05f);
 }
 
+TEST_CASE("firmware loop: a kidnap's status frames make the robot lost as in the device replay, and are counted") {
+  const OfficeStreams& o = dpcr::test::Office15sKidnapped();
+  LoopRun run(o, o.records);
+  MemoryStore store;
+  std::FILE* log = std::tmpfile();
+  dpcr::board::Firmware firmware(ConfigFor(o), dpcr::board::FirmwarePorts{&run.uart, &run.can, &run.clock, &store, nullptr}, log);
+  REQUIRE(firmware.Start());
+  dpcr::test::ReplayWaiter waiter(
+      &run.clock, [&] { return run.uart.next_stamp_us(); }, [&] { return run.can.next_stamp_us(); }, o.end_us() + 500000);
+  CHECK(dpcr::board::RunFirmwareLoop(&firmware, &waiter, run.clock) == 0);
+  CHECK(firmware.Finish(0) == 0);
+  const std::string text = ReadLog(log);
+  std::fclose(log);
+  INFO(text);
+  REQUIRE(o.lifted_scans >= 30);  // carried 3-6 s: the replay kept those scans out
+  CHECK(firmware.mapper().counters().lifted_scans == o.lifted_scans);
+  CHECK(firmware.mapper().counters().lost_events == o.lost_events);
+  CHECK(firmware.device_counters().lifts == 1);
+  CHECK(firmware.device_counters().can.reserved_flags == 0);
+  CHECK(text.find(" lifts=1 ") != std::string::npos);  // the summary line
+  const dpcr::Pose2 a = firmware.mapper().pose();
+  CHECK(a.x == o.pose.x);  // the same inputs in the same order: bit-identical
+  CHECK(a.y == o.pose.y);
+}
+
 TEST_CASE("firmware: an unwritable map directory is an error at start, not at the first save") {
   const OfficeStreams& o = dpcr::test::Office15s();
   LoopRun run(o, o.records);

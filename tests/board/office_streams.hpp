@@ -27,11 +27,15 @@ struct OfficeStreams {
   Pose2 pose;
   std::uint32_t scans = 0;
   std::uint32_t odometry_samples = 0;
+  std::uint32_t lost_events = 0;
+  std::uint32_t lifted_scans = 0;
   std::int64_t start_us() const { return std::min(chunks.front().stamp_us, records.front().stamp_us); }
   std::int64_t end_us() const { return std::max(chunks.back().stamp_us, records.back().stamp_us); }
 };
 
-inline OfficeStreams MakeOfficeStreams(double minutes) {
+// `kidnaps`: the robot carried away that many times from the run's fifth second on (the wheels'
+// lift flag in status frames).
+inline OfficeStreams MakeOfficeStreams(double minutes, int kidnaps = 0) {
   using MapperType = Mapper<VacuumProfile>;
   struct CountingSink : DeviceSink {
     explicit CountingSink(MapperType* m) : mapper(m) {}
@@ -48,6 +52,8 @@ inline OfficeStreams MakeOfficeStreams(double minutes) {
   sim::SimConfig config;
   config.duration_min = minutes;
   config.seed = 5;
+  config.kidnaps.count = kidnaps;
+  config.kidnaps.from_min = 5.0 / 60.0;
   const sim::World world = sim::LoadBuiltinWorld("office");
   sim::Simulation simulation(world, config);
   DeviceEmitter emitter(o.files);
@@ -77,12 +83,20 @@ inline OfficeStreams MakeOfficeStreams(double minutes) {
   o.pose = reference->pose();
   o.scans = sink.scans;
   o.odometry_samples = reference->counters().odometry_samples;
+  o.lost_events = reference->counters().lost_events;
+  o.lifted_scans = reference->counters().lifted_scans;
   return o;
 }
 
 // 15 s of the office (150 scans), shared by the tests of one process.
 inline const OfficeStreams& Office15s() {
   static const OfficeStreams streams = MakeOfficeStreams(0.25);
+  return streams;
+}
+
+// The same 15 s with one kidnap.
+inline const OfficeStreams& Office15sKidnapped() {
+  static const OfficeStreams streams = MakeOfficeStreams(0.25, 1);
   return streams;
 }
 

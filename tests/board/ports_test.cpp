@@ -17,6 +17,7 @@
 #include "board/monotonic_clock.hpp"
 #include "board/socketcan_port.hpp"
 #include "board/termios_uart.hpp"
+#include "hal/wheel_can_protocol.hpp"
 
 namespace {
 
@@ -110,4 +111,17 @@ TEST_CASE("board ports: blobs are files in the store's directory; a failure keep
   CHECK(store.Write("map.pgm", data, sizeof(data)) == dpcr::IoStatus::kIoError);
   CHECK(errno == ENOENT);
   CHECK(store.last_error().find(dir + "/map.pgm.tmp: open") != std::string::npos);
+}
+
+TEST_CASE("board ports: the SocketCAN filters pass the protocol's IDs, as standard data frames only") {
+  using dpcr::board::WheelFiltersPass;
+  CHECK(WheelFiltersPass(dpcr::kWheelTicksCanId));
+  CHECK(WheelFiltersPass(dpcr::kGyroCanId));
+  CHECK(WheelFiltersPass(dpcr::kStatusCanId));
+  CHECK(WheelFiltersPass(0x122));
+  CHECK_FALSE(WheelFiltersPass(0x123));
+  CHECK_FALSE(WheelFiltersPass(0x11F));
+  CHECK_FALSE(WheelFiltersPass(0x122 | dpcr::kCanEffFlag));
+  CHECK_FALSE(WheelFiltersPass(0x1000122 | dpcr::kCanEffFlag));  // an extended ID ending in 0x122
+  CHECK_FALSE(WheelFiltersPass(0x122 | dpcr::kCanRtrFlag));
 }

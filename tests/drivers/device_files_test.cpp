@@ -151,3 +151,109 @@ TEST_CASE("the emitter describes the device in device.json, which reads back as 
   REQUIRE_FALSE(dpcr::ReadDeviceDescription(dir + "/bad.json", &untouched, &lidar, &error));
   CHECK(error.find("bad.json") != std::string::npos);
 }
+
+namespace {
+
+// The run with the wheels lifted from sample `from` to before `to`.
+Run MakeLiftedRun(int from, int to) {
+  Run run = MakeRun();
+  for (int i = from; i < to; ++i) run.odometry[static_cast<std::size_t>(i)].lifted = true;
+  return run;
+}
+
+void Emit(const Run& run, const dpcr::DeviceFilesConfig& files, const std::string& dir) {
+  dpcr::DeviceEmitter emitter(files);
+  std::string error;
+  REQUIRE(emitter.Open(dir, &error));
+  for (const auto& s : run.scans) REQUIRE(emitter.AddScan(*s));
+  for (const auto& o : run.odometry) emitter.AddOdometry(o);
+  REQUIRE(emitter.Close(&error));
+}
+
+struct Replayed {
+  std::vector<dpcr::OdometrySample> odometry;
+  dpcr::DevicePipelineCounters counters;
+};
+
+// Only the odometry (on a realistic bus scans and samples interleave by arrival, not device time).
+struct OdometrySink : dpcr::DeviceSink {
+  void AddOdometry(const dpcr::OdometrySample& sample) override { odometry.push_back(sample); }
+  void AddScan(const dpcr::DeviceScan&) override {}
+  std::vector<dpcr::OdometrySample> odometry;
+};
+
+Replayed Replay(const dpcr::DeviceFilesConfig& files, const std::string& dir) {
+  dpcr::LidarStreamConfig lidar;
+  lidar.assembler.angle_map = files.angle_map;
+  OdometrySink sink;
+  dpcr::DeviceReplay replay(files, lidar, &sink);
+  std::string error;
+  REQUIRE(replay.Open(dir + "/lidar.uart", dir + "/wheels.log", &error));
+  replay.Run();
+  return Replayed{sink.odometry, replay.counters()};
+}
+
+std::vector<dpcr::CandumpRecord> ReadLog(const std::string& path) {
+  std::vector<dpcr::CandumpRecord> records;
+  std::string error;
+  REQUIRE(dpcr::ReadCandumpLog(path, &records, &error));
+  return records;
+}
+
+}  // namespace
+
+TEST_CASE("the emitter's status frames carry the lift flag through the replay, on an ideal and a realistic bus") {
+  const Run run = MakeLiftedRun(125, 185);  // lifted 1.25 s to 1.85 s
+  dpcr::DeviceFilesConfig files;
+  const bool realistic = GENERATE(false, true);
+  if (realistic) dpcr::RealisticBus(&files, 7);
+  const dpcr::test::ScopedTempDir temp("device_lift");
+  Emit(run, files, temp.str());
+  // A status frame at the start, on each change, and never more than 100 ms of device time apart.
+  std::vector<std::uint32_t> times;
+  std::string flags;
+  for (const dpcr::CandumpRecord& r : ReadLog(temp.str() + "/wheels.log")) {
+    if (r.frame.id != dpcr::kStatusCanId) continue;
+    flags += static_cast<char>('0' + r.frame.data[0]);
+    times.push_back(static_cast<std::uint32_t>(r.frame.data[2] | r.frame.data[3] << 8 | r.frame.data[4] << 16));
+  }
+  // 0, 0.1, .., 1.2 s down; 1.25 (the lift), 1.35, .., 1.75 up; 1.85 (the put-down), 1.95, .., 2.95 down.
+  CHECK(flags == std::string(13, '0') + std::string(6, '1') + std::string(12, '0'));
+  for (std::size_t i = 1; i < times.size(); ++i) CHECK(times[i] - times[i - 1] <= 10000 + (realistic ? 1 : 0));
+  const Replayed replayed = Replay(files, temp.str());
+  REQUIRE(replayed.odometry.size() == run.odometry.size());
+  for (std::size_t i = 0; i < run.odometry.size(); ++i) {
+    INFO("sample " << i);
+    CHECK(replayed.odometry[i].lifted == run.odometry[i].lifted);
+  }
+  CHECK(replayed.counters.lifts == 1);
+  CHECK(replayed.counters.lifted_samples == 60);
+  CHECK(replayed.counters.can.status_frames == times.size());
+  CHECK(replayed.counters.can.lost == 0);
+}
+
+TEST_CASE("status frames leave every other frame's arrival as it was (logs from before them replay the same)") {
+  const Run run = MakeLiftedRun(120, 180);
+  dpcr::DeviceFilesConfig files;
+  dpcr::RealisticBus(&files, 3);
+  const dpcr::test::ScopedTempDir with("device_status_on");
+  const dpcr::test::ScopedTempDir without("device_status_off");
+  Emit(run, files, with.str());
+  files.status_period_us = 0;  // a robot without the status frame
+  Emit(run, files, without.str());
+  std::vector<dpcr::CandumpRecord> stripped;
+  for (const dpcr::CandumpRecord& r : ReadLog(with.str() + "/wheels.log")) {
+    if (r.frame.id != dpcr::kStatusCanId) stripped.push_back(r);
+  }
+  const std::vector<dpcr::CandumpRecord> old = ReadLog(without.str() + "/wheels.log");
+  REQUIRE(stripped.size() == old.size());
+  for (std::size_t i = 0; i < old.size(); ++i) {
+    REQUIRE(dpcr::FormatCandumpLine(stripped[i]) == dpcr::FormatCandumpLine(old[i]));
+  }
+  // Without status frames the replay never lifts the robot, whatever the run did.
+  const Replayed replayed = Replay(files, without.str());
+  CHECK(replayed.counters.lifted_samples == 0);
+  CHECK(replayed.counters.can.status_frames == 0);
+  REQUIRE(replayed.odometry.size() == run.odometry.size());
+  for (const dpcr::OdometrySample& o : replayed.odometry) REQUIRE_FALSE(o.lifted);
+}

@@ -112,7 +112,15 @@ TEST_CASE("wheel clock over 70 minutes: with the tracked time base the prior and
     REQUIRE(emitter.Close(&error));
     std::vector<dpcr::CandumpRecord> records;
     REQUIRE(dpcr::ReadCandumpLog((dir.path() / "wheels.log").string(), &records, &error));
-    REQUIRE(records.size() == static_cast<std::size_t>(samples));
+    // A ticks frame a sample, and a status frame (not lifted) every 100 ms.
+    std::size_t ticks_frames = 0, status_frames = 0;
+    for (const dpcr::CandumpRecord& r : records) {
+      ticks_frames += r.frame.id == dpcr::kWheelTicksCanId;
+      status_frames += r.frame.id == dpcr::kStatusCanId;
+    }
+    REQUIRE(ticks_frames == static_cast<std::size_t>(samples));
+    REQUIRE(status_frames == static_cast<std::size_t>((samples + 9) / 10));
+    REQUIRE(records.size() == ticks_frames + status_frames);
 
     const Errors tracked = Evaluate(records, dpcr::DeviceTimeBase::Mode::kTracked, t0, minutes, 10.0);
     const Errors first = Evaluate(records, dpcr::DeviceTimeBase::Mode::kFirstFrame, t0, minutes, 10.0);

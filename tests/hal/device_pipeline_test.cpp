@@ -46,6 +46,37 @@ dpcr::CanFrame Gyro(std::int16_t mrad_s, std::uint8_t sequence, std::uint32_t ti
   return dpcr::EncodeGyroFrame(g);
 }
 
+dpcr::CanFrame Status(bool lifted, std::uint8_t sequence, std::uint32_t time_10us) {
+  dpcr::StatusFrame f;
+  f.flags = lifted ? dpcr::kStatusLiftedFlag : 0;
+  f.sequence = sequence;
+  f.time_10us = time_10us;
+  return dpcr::EncodeStatusFrame(f);
+}
+
+// Ticks frames every 10 ms of device time from 0 (sequence k, 1 tick a frame), each received
+// 1 ms after it was taken; `status_at(k)` is called before frame k to feed status frames.
+template <class StatusAt>
+std::vector<dpcr::OdometrySample> RunTicks(int frames, StatusAt status_at, dpcr::DevicePipelineCounters* counters = nullptr) {
+  RecordingSink sink;
+  auto pipeline = std::make_unique<dpcr::DevicePipeline>(dpcr::DevicePipelineConfig{}, &sink);
+  for (int k = 0; k < frames; ++k) {
+    const std::int64_t received_us = 1000000 + k * 10000 + 1000;
+    status_at(k, pipeline.get(), received_us);
+    const auto u = static_cast<std::uint16_t>(k);
+    pipeline->FeedCan(Ticks(u, u, static_cast<std::uint8_t>(k), static_cast<std::uint32_t>(k * 1000)), received_us);
+  }
+  if (counters != nullptr) *counters = pipeline->counters();
+  return sink.odometry;
+}
+
+// The indices of the samples marked lifted, as a string of 0/1.
+std::string LiftedPattern(const std::vector<dpcr::OdometrySample>& odometry) {
+  std::string s;
+  for (const dpcr::OdometrySample& o : odometry) s += o.lifted ? '1' : '0';
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("pipeline: lidar bytes become the assembler's revolutions, one per FeedLidar call") {
@@ -170,4 +201,95 @@ TEST_CASE("a gyro frame just before the first ticks frame makes no gyro-only sam
   REQUIRE(sink.odometry.size() == 1);
   CHECK(sink.odometry[0].has_wheels);
   CHECK(sink.odometry[0].has_gyro);
+}
+
+TEST_CASE("pipeline: samples from the lift's device time to the put-down's are marked lifted") {
+  // Status every 50 ms (frames 0, 5, 10, ...): lifted at frame 3 (a change, sent at once), put
+  // down at frame 12.
+  std::uint8_t sequence = 0;
+  const auto status_at = [&](int k, dpcr::DevicePipeline* p, std::int64_t received_us) {
+    const bool lifted = k >= 3 && k < 12;
+    if (k % 5 == 0 || k == 3 || k == 12) p->FeedCan(Status(lifted, sequence++, static_cast<std::uint32_t>(k * 1000)), received_us);
+  };
+  dpcr::DevicePipelineCounters c;
+  const auto odometry = RunTicks(16, status_at, &c);
+  CHECK(LiftedPattern(odometry) == "0001111111110000");
+  CHECK(c.lifts == 1);
+  CHECK(c.lifted_samples == 9);
+  CHECK(c.can.status_frames == 6);
+  CHECK(c.odometry == 16);
+}
+
+TEST_CASE("pipeline: a lost lift frame is made good by the next periodic status") {
+  std::uint8_t sequence = 0;
+  const auto status_at = [&](int k, dpcr::DevicePipeline* p, std::int64_t received_us) {
+    const bool lifted = k >= 3;
+    const bool sent = k % 5 == 0 || k == 3;
+    if (!sent) return;
+    const dpcr::CanFrame f = Status(lifted, sequence++, static_cast<std::uint32_t>(k * 1000));
+    if (k != 3) p->FeedCan(f, received_us);  // the lift itself is lost on the bus
+  };
+  dpcr::DevicePipelineCounters c;
+  const auto odometry = RunTicks(12, status_at, &c);
+  CHECK(LiftedPattern(odometry) == "000001111111");  // lifted from the resend at frame 5
+  CHECK(c.can.lost == 1);
+  CHECK(c.lifts == 1);
+}
+
+TEST_CASE("pipeline: a late status frame is dropped and does not lift the robot again") {
+  const auto status_at = [&](int k, dpcr::DevicePipeline* p, std::int64_t received_us) {
+    if (k == 0) p->FeedCan(Status(false, 0, 0), received_us);
+    if (k == 2) p->FeedCan(Status(true, 1, 2000), received_us);
+    if (k == 6) p->FeedCan(Status(false, 3, 6000), received_us);  // the put-down...
+    if (k == 7) p->FeedCan(Status(true, 2, 5000), received_us);   // ...overtook the periodic resend before it
+  };
+  dpcr::DevicePipelineCounters c;
+  const auto odometry = RunTicks(10, status_at, &c);
+  CHECK(LiftedPattern(odometry) == "0011110000");
+  CHECK(c.can.reordered == 1);
+  CHECK(c.can.lost == 0);
+}
+
+TEST_CASE("pipeline: a ticks frame overtaken by a status frame gets the state of its own instant") {
+  RecordingSink sink;
+  auto pipeline = std::make_unique<dpcr::DevicePipeline>(dpcr::DevicePipelineConfig{}, &sink);
+  pipeline->FeedCan(Status(false, 0, 0), 1000000);
+  pipeline->FeedCan(Ticks(0, 0, 0, 0), 1000000);
+  pipeline->FeedCan(Status(true, 1, 2000), 1020500);  // lifted at 20 ms...
+  pipeline->FeedCan(Ticks(1, 1, 1, 1000), 1021000);   // ...the 10 ms ticks frame arrives after it
+  pipeline->FeedCan(Ticks(2, 2, 2, 2000), 1021500);
+  CHECK(LiftedPattern(sink.odometry) == "001");
+}
+
+TEST_CASE("pipeline: a log without status frames is never lifted") {
+  dpcr::DevicePipelineCounters c;
+  const auto odometry = RunTicks(300, [](int, dpcr::DevicePipeline*, std::int64_t) {}, &c);
+  CHECK(LiftedPattern(odometry) == std::string(300, '0'));
+  CHECK(c.lifts == 0);
+  CHECK(c.lifted_samples == 0);
+  CHECK(c.can.status_frames == 0);
+}
+
+TEST_CASE("pipeline: status frames that stop while lifted lift no sample after kStaleUs") {
+  const auto status_at = [&](int k, dpcr::DevicePipeline* p, std::int64_t received_us) {
+    if (k == 0) p->FeedCan(Status(true, 0, 0), received_us);  // then silence
+  };
+  const auto odometry = RunTicks(110, status_at);
+  REQUIRE(odometry.size() == 110);
+  CHECK(odometry[100].lifted);  // 1 s after the last status
+  CHECK_FALSE(odometry[101].lifted);
+}
+
+TEST_CASE("pipeline: gyro-only samples are marked lifted too") {
+  RecordingSink sink;
+  auto pipeline = std::make_unique<dpcr::DevicePipeline>(dpcr::DevicePipelineConfig{}, &sink);
+  pipeline->FeedCan(Gyro(100, 0, 0), 40000);
+  pipeline->FeedCan(Status(true, 0, 1000), 50000);
+  pipeline->FeedCan(Gyro(100, 1, 1000), 50000);
+  pipeline->FeedCan(Status(false, 1, 2000), 60000);
+  pipeline->FeedCan(Gyro(100, 2, 2000), 60000);
+  REQUIRE(sink.odometry.size() == 2);
+  CHECK_FALSE(sink.odometry[0].has_wheels);
+  CHECK(sink.odometry[0].lifted);
+  CHECK_FALSE(sink.odometry[1].lifted);
 }

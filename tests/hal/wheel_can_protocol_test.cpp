@@ -87,3 +87,78 @@ TEST_CASE("can gyro frame round trip") {
   REQUIRE(d.Feed(Ticks(0, 0, 0, 0)) == CanDecodeResult::kTicks);
   CHECK(d.counters().lost == 0);
 }
+
+namespace {
+dpcr::CanFrame Status(std::uint8_t flags, std::uint8_t seq, std::uint32_t t) {
+  dpcr::StatusFrame s;
+  s.flags = flags;
+  s.sequence = seq;
+  s.time_10us = t;
+  return dpcr::EncodeStatusFrame(s);
+}
+}  // namespace
+
+TEST_CASE("can status frame layout is as documented, and decodes back") {
+  const dpcr::CanFrame f = Status(0x01, 3, 0x123456);
+  CHECK(f.id == 0x122);
+  CHECK(f.dlc == 5);
+  const std::uint8_t expect[5] = {0x01, 0x03, 0x56, 0x34, 0x12};
+  for (int i = 0; i < 5; ++i) CHECK(f.data[i] == expect[i]);
+  WheelCanDecoder d;
+  REQUIRE(d.Feed(f) == CanDecodeResult::kStatus);
+  CHECK(d.status().lifted);
+  CHECK(d.status().device_time_us == 0x123456 * 10LL);
+  REQUIRE(d.Feed(Status(0x00, 4, 0x123456 + 10000)) == CanDecodeResult::kStatus);
+  CHECK_FALSE(d.status().lifted);
+  CHECK(d.status().device_time_us == (0x123456 + 10000) * 10LL);
+  CHECK(d.counters().status_frames == 2);
+  CHECK(d.counters().reserved_flags == 0);
+  CHECK(d.counters().foreign == 0);
+}
+
+TEST_CASE("can status frame with a wrong dlc is counted and changes nothing") {
+  WheelCanDecoder d;
+  REQUIRE(d.Feed(Status(0x00, 0, 100)) == CanDecodeResult::kStatus);
+  dpcr::CanFrame f = Status(0x01, 1, 200);
+  f.dlc = 4;
+  CHECK(d.Feed(f) == CanDecodeResult::kBadDlc);
+  f.dlc = 8;
+  CHECK(d.Feed(f) == CanDecodeResult::kBadDlc);
+  CHECK_FALSE(d.status().lifted);
+  CHECK(d.counters().bad_dlc == 2);
+  CHECK(d.counters().status_frames == 1);
+}
+
+TEST_CASE("can status frame with reserved flags set is counted, bit 0 still holds") {
+  WheelCanDecoder d;
+  REQUIRE(d.Feed(Status(0xFE, 0, 100)) == CanDecodeResult::kStatus);
+  CHECK_FALSE(d.status().lifted);
+  REQUIRE(d.Feed(Status(0x81, 1, 200)) == CanDecodeResult::kStatus);
+  CHECK(d.status().lifted);
+  REQUIRE(d.Feed(Status(0x01, 2, 300)) == CanDecodeResult::kStatus);
+  CHECK(d.counters().reserved_flags == 2);
+  CHECK(d.counters().status_frames == 3);
+}
+
+TEST_CASE("can status stream: own sequence, lost, duplicated and late frames as the others") {
+  WheelCanDecoder d;
+  REQUIRE(d.Feed(Ticks(0, 0, 40, 0)) == CanDecodeResult::kTicks);
+  REQUIRE(d.Feed(Status(0x00, 200, 0)) == CanDecodeResult::kStatus);  // its own sequence: no gap
+  CHECK(d.counters().lost == 0);
+  CHECK(d.Feed(Status(0x00, 200, 0)) == CanDecodeResult::kDuplicate);
+  // 201 (the lift) lost; 202 says lifted (the periodic resend).
+  REQUIRE(d.Feed(Status(0x01, 202, 20000)) == CanDecodeResult::kStatus);
+  CHECK(d.counters().lost == 1);
+  CHECK(d.status().lifted);
+  REQUIRE(d.Feed(Status(0x00, 203, 30000)) == CanDecodeResult::kStatus);  // put down
+  // 201 arrives late: dropped, it does not lift the robot again.
+  CHECK(d.Feed(Status(0x01, 201, 10000)) == CanDecodeResult::kReordered);
+  CHECK_FALSE(d.status().lifted);
+  CHECK(d.status().device_time_us == 300000);
+  CHECK(d.counters().lost == 0);
+  CHECK(d.counters().duplicated == 1);
+  CHECK(d.counters().reordered == 1);
+  CHECK(d.counters().status_frames == 3);
+  REQUIRE(d.Feed(Ticks(1, 1, 41, 1000)) == CanDecodeResult::kTicks);  // the ticks stream unaffected
+  CHECK(d.counters().lost == 0);
+}
