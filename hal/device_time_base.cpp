@@ -21,21 +21,40 @@ void DeviceTimeBase::CloseBlock() {
   FitDrift();
 }
 
+// A block whose minimum lies above another's by more than the largest drift between them could
+// make, plus kLateToleranceUs: all its frames were late (a reader stalled longer than a block).
+bool DeviceTimeBase::Late(int i) const {
+  for (int j = 0; j < block_count_; ++j) {
+    const double apart_us = std::fabs(static_cast<double>(blocks_[i].device_us - blocks_[j].device_us));
+    if (static_cast<double>(blocks_[i].offset_us - blocks_[j].offset_us) > kMaxDriftPpm * 1e-6 * apart_us + kLateToleranceUs) {
+      return true;
+    }
+  }
+  return false;
+}
+
 // Least squares of the blocks' minima against their device times (centred: no precision lost
-// to hours of microseconds).
+// to hours of microseconds), late blocks left out: one block of a stalled reader's frames,
+// seconds late, pulled the slope to its bound and every stamp after it off by milliseconds.
 void DeviceTimeBase::FitDrift() {
-  if (block_count_ < kMinBlocksForDrift) return;
+  bool late[kBlocks] = {};
+  int used = 0;
   double mean_d = 0.0;
   double mean_o = 0.0;
   for (int i = 0; i < block_count_; ++i) {
+    late[i] = Late(i);
+    if (late[i]) continue;
+    ++used;
     mean_d += static_cast<double>(blocks_[i].device_us - current_.device_us);
     mean_o += static_cast<double>(blocks_[i].offset_us - current_.offset_us);
   }
-  mean_d /= block_count_;
-  mean_o /= block_count_;
+  if (used < kMinBlocksForDrift) return;
+  mean_d /= used;
+  mean_o /= used;
   double sdd = 0.0;
   double sdo = 0.0;
   for (int i = 0; i < block_count_; ++i) {
+    if (late[i]) continue;
     const double d = static_cast<double>(blocks_[i].device_us - current_.device_us) - mean_d;
     const double o = static_cast<double>(blocks_[i].offset_us - current_.offset_us) - mean_o;
     sdd += d * d;

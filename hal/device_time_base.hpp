@@ -29,6 +29,7 @@ class DeviceTimeBase {
   static constexpr int kBlocks = 32;                     // a 64 s window
   static constexpr std::int64_t kRestartUs = 1000000;    // the device clock back by 1 s: a new clock
   static constexpr double kMaxDriftPpm = 500.0;          // a fitted drift past this is noise
+  static constexpr double kLateToleranceUs = 1000.0;     // a block's minimum this far above the envelope: late
 
   // Observes one frame (device time `device_us`, unwrapped; arrival `host_us`) and returns its
   // device time in host time.
@@ -50,6 +51,7 @@ class DeviceTimeBase {
   void Restart(std::int64_t device_us, std::int64_t offset);
   void CloseBlock();
   void FitDrift();
+  bool Late(int block) const;
   std::int64_t OffsetAt(std::int64_t device_us) const;
 
   Mode mode_;

@@ -123,7 +123,7 @@ TEST_CASE("Numbers parse to the double strtod gives (the short-decimal fast path
   }
 }
 
-TEST_CASE("Laser records become scans; more beams than a scan holds are decimated, not truncated") {
+TEST_CASE("Laser records become scans, more beams than a scan holds are decimated, not truncated") {
   dpcr::carmen::LaserRecord laser;
   laser.stamp_us = 42;
   laser.angle_min_rad = -1.0f;

@@ -97,7 +97,7 @@ struct LoopRun {
 
 }  // namespace
 
-TEST_CASE("firmware loop on fake ports maps as the device replay does; the map file saved once, loadable") {
+TEST_CASE("firmware loop on fake ports maps as the device replay does, the map file saved once, loadable") {
   const OfficeStreams& o = dpcr::test::Office15s();
   LoopRun run(o, o.records);
   MemoryStore store;
@@ -226,7 +226,7 @@ TEST_CASE("firmware loop: a slow flash does not stall the scans (saves wait in t
   CHECK(firmware.mapper().pose().x == o.pose.x);
 }
 
-TEST_CASE("firmware loop: without CAN the lidar maps alone, said in the log; the wheels are taken back") {
+TEST_CASE("firmware loop: without CAN the lidar maps alone, said in the log, the wheels are taken back") {
   const OfficeStreams& o = dpcr::test::Office15s();
   LoopRun run(o, o.records);
   const std::int64_t down = o.start_us() + 5000000;
@@ -264,7 +264,7 @@ TEST_CASE("firmware loop: without CAN the lidar maps alone, said in the log; the
   CHECK(std::fabs(dpcr::NormalizeAngle(a.theta - o.pose.theta)) < 0.05f);
 }
 
-TEST_CASE("firmware loop: wheels silent (frames missing) -> lidar alone; their return resumes the odometry without a jump") {
+TEST_CASE("firmware loop: wheels silent (frames missing) -> lidar alone, their return resumes the odometry without a jump") {
   const OfficeStreams& o = dpcr::test::Office15s();
   std::vector<dpcr::CandumpRecord> records;
   const std::int64_t from = o.start_us() + 4000000;

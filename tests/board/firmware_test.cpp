@@ -95,7 +95,7 @@ TEST_CASE("firmware: a missing serial device is named with its errno, exit 1") {
   std::fclose(log);
 }
 
-TEST_CASE("firmware: no CAN interface -> the lidar alone, said once; systemd hears ready, watchdog kicks, stopping") {
+TEST_CASE("firmware: no CAN interface -> the lidar alone, said once, systemd hears ready, watchdog kicks, stopping") {
   Pty pty;
   const dpcr::test::ScopedTempDir dir("firmware_no_can");
   FakeNotifySocket notify(dir.str(), 100000);  // kicks every 50 ms: the socket queues 10 datagrams
@@ -126,7 +126,7 @@ TEST_CASE("firmware: no CAN interface -> the lidar alone, said once; systemd hea
   CHECK(kicks >= 5);
 }
 
-TEST_CASE("systemd notifier: disabled without NOTIFY_SOCKET; abstract and path sockets; WATCHDOG_PID of another process") {
+TEST_CASE("systemd notifier: disabled without NOTIFY_SOCKET, abstract and path sockets, WATCHDOG_PID of another process") {
   ::unsetenv("NOTIFY_SOCKET");
   CHECK_FALSE(dpcr::board::SystemdNotifier().enabled());
   const dpcr::test::ScopedTempDir dir("notifier");

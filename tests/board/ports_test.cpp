@@ -97,7 +97,7 @@ TEST_CASE("board ports: the monotonic clock moves forward") {
   CHECK(b - a < 2000000);
 }
 
-TEST_CASE("board ports: blobs are files in the store's directory; a failure keeps errno and says where") {
+TEST_CASE("board ports: blobs are files in the store's directory, a failure keeps errno and says where") {
   const std::string dir = TempDir();
   dpcr::board::AtomicFileStore store(dir);
   const std::uint8_t data[4] = {'P', '5', '\n', 0};

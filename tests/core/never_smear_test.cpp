@@ -58,7 +58,7 @@ struct Runner {
 
 }  // namespace
 
-TEST_CASE("A rejected scan under an uncertain prediction goes into no map; a streak is lost and counted") {
+TEST_CASE("A rejected scan under an uncertain prediction goes into no map, a streak is lost and counted") {
   Runner r;
   std::mt19937 rng(7);
   for (int i = 0; i < 20; ++i) r.Scan(i);
@@ -134,7 +134,7 @@ TEST_CASE("With a gyro alone (no wheels) a rejected scan is never fused") {
   REQUIRE(Render(*m) == before);
 }
 
-TEST_CASE("A sparse first revolution (a spin-up) does not start the submap; the next full one does") {
+TEST_CASE("A sparse first revolution (a spin-up) does not start the submap, the next full one does") {
   Runner r;
   M::ScanType sparse = r.run.scans[0];
   for (std::size_t b = 0; b < sparse.beams.size(); ++b) {

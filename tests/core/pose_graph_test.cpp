@@ -157,7 +157,7 @@ TEST_CASE("The robust kernel keeps a wrong edge from bending a consistent graph"
   }
 }
 
-TEST_CASE("Pose graph: fewer than three vertices are not optimised; full stores say so") {
+TEST_CASE("Pose graph: fewer than three vertices are not optimised, full stores say so") {
   dpcr::PoseGraphStorage<3, 2> g;
   REQUIRE(g.AddVertex(Pose2{}) == dpcr::Status::kOk);
   REQUIRE(g.AddVertex(Pose2{1.0f, 0.0f, 0.0f}) == dpcr::Status::kOk);

@@ -67,7 +67,7 @@ TEST_CASE("Crossing rays update a shared cell once, and a hit wins over a miss")
   REQUIRE(f.grid->Get(CellIndex{5, 0}) == 2 * f.config.miss_delta);
 }
 
-TEST_CASE("Beams without a return clear space but mark no wall; far points are counted, not lost silently") {
+TEST_CASE("Beams without a return clear space but mark no wall, far points are counted, not lost silently") {
   Fixture f;
   const auto stats = f.Insert(Point2{0.025f, 0.025f}, {Point2{10.0f, 0.0f}}, 1, {Point2{0.025f, 0.5f}});
   REQUIRE(stats.out_of_box > 0);
@@ -115,7 +115,7 @@ TEST_CASE("A ray clears nothing within the hit margin before its return") {
   REQUIRE(near.miss_cells == 0);
 }
 
-TEST_CASE("A return behind a settled wall along its ray is dropped with its ray; one at the wall is kept") {
+TEST_CASE("A return behind a settled wall along its ray is dropped with its ray, one at the wall is kept") {
   Fixture f;
   f.grid->set_settle_at_bounds(true);
   f.config.drop_hits_behind_settled_cells = 5;

@@ -33,7 +33,7 @@ struct TwoMaps {
 std::int16_t CellAt(const dpcr::TiledGrid& g, Point2 p) { return g.Get(dpcr::CellOf(p.x, p.y, g.resolution_m())); }
 }  // namespace
 
-TEST_CASE("A region gets a map on first entry, anchored at its centre; re-entry finds it") {
+TEST_CASE("A region gets a map on first entry, anchored at its centre, re-entry finds it") {
   auto m = std::make_unique<TwoMaps>();
   RegionSet& set = m->set;
   REQUIRE(set.Enter(RegionKey{0, 0}, Point2{1.0f, 2.0f}) == RegionSet::Entry::kCreated);

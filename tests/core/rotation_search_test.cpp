@@ -57,7 +57,7 @@ dpcr::Span<const Point2> SpanOf(const std::vector<Point2>& v) { return dpcr::Spa
 
 }  // namespace
 
-TEST_CASE("Coarse search recovers a scan rotated by 15 degrees and shifted; PLICP then refines it") {
+TEST_CASE("Coarse search recovers a scan rotated by 15 degrees and shifted, PLICP then refines it") {
   Scene s;
   REQUIRE_FALSE(s.grid->empty());
   const Pose2 truth{4.0f, 3.0f, 0.3f};

@@ -29,7 +29,7 @@ OdometryBuffer Samples(bool wheels, bool gyro) {
 
 }  // namespace
 
-TEST_CASE("With wheels the de-skew follows the wheels; with gyro_heading, the gyro's turn") {
+TEST_CASE("With wheels the de-skew follows the wheels, with gyro_heading, the gyro's turn") {
   const OdometryBuffer b = Samples(true, true);
   const Pose2 velocity{1.0f, 1.0f, 1.0f};  // ignored: the wheels have it
   const ScanMotion wheels(b, false, velocity, 100000);
@@ -43,7 +43,7 @@ TEST_CASE("With wheels the de-skew follows the wheels; with gyro_heading, the gy
   CHECK(gyro.At(100000).x == Approx(expected.x).margin(1e-5));
 }
 
-TEST_CASE("A gyro alone turns the de-skew; the constant velocity moves it") {
+TEST_CASE("A gyro alone turns the de-skew, the constant velocity moves it") {
   const OdometryBuffer b = Samples(false, true);
   const ScanMotion m(b, false, Pose2{0.3f, 0.0f, 5.0f}, 100000);
   REQUIRE(m.moves());

@@ -60,7 +60,7 @@ TEST_CASE("uart capture rejects a bad line and names it") {
   std::remove(path.c_str());
 }
 
-TEST_CASE("uart capture: a recording's end line gives its stamp; other comment lines are skipped") {
+TEST_CASE("uart capture: a recording's end line gives its stamp, other comment lines are skipped") {
   const dpcr::test::ScopedTempDir dir("uart_end");
   const std::string path = (dir.path() / "lidar.uart").string();
   std::ofstream(path) << "# dpcr-uart-capture 1\n# device recorded by dpcr-firmware\n1.000100 54\n2.000200 2C\n# end 3.500000\n";

@@ -61,7 +61,7 @@ TEST_CASE("Relations metric compares relative motions") {
   REQUIRE(r.rot_mean_deg == Approx(0.0).margin(1e-4));
 }
 
-TEST_CASE("Relations files are read with exact stamps; a bad stamp names the file and line") {
+TEST_CASE("Relations files are read with exact stamps, a bad stamp names the file and line") {
   const std::string path =
       (std::filesystem::temp_directory_path() / ("dpcr_relations_" + std::to_string(::getpid()) + ".txt")).string();
   {

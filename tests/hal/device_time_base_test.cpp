@@ -45,7 +45,7 @@ OffsetErrors RunClock(dpcr::DeviceTimeBase::Mode mode, double ppm, double minute
 
 }  // namespace
 
-TEST_CASE("device time base: over 70 minutes the tracked offset stays within a millisecond; the first frame's drifts away") {
+TEST_CASE("device time base: over 70 minutes the tracked offset stays within a millisecond, the first frame's drifts away") {
   for (const double ppm : {20.0, 35.0, 50.0, -50.0}) {
     const OffsetErrors tracked = RunClock(dpcr::DeviceTimeBase::Mode::kTracked, ppm, 70.0, 10.0, 3);
     const OffsetErrors first = RunClock(dpcr::DeviceTimeBase::Mode::kFirstFrame, ppm, 70.0, 10.0, 3);
@@ -59,7 +59,7 @@ TEST_CASE("device time base: over 70 minutes the tracked offset stays within a m
   }
 }
 
-TEST_CASE("device time base: the first frame maps as before; a late first frame is forgotten") {
+TEST_CASE("device time base: the first frame maps as before, a late first frame is forgotten") {
   dpcr::DeviceTimeBase base;
   CHECK(base.ToHostUs(1000, 51000) == 51000);  // the first frame: its own offset
   // The first frame was 30 ms late: the next, less delayed frames bring the offset down.
@@ -67,7 +67,7 @@ TEST_CASE("device time base: the first frame maps as before; a late first frame 
   CHECK(base.offset_us() == 21000);
 }
 
-TEST_CASE("device time base: a reader stalled for seconds moves no stamp; a device clock that steps back restarts it") {
+TEST_CASE("device time base: a reader stalled for seconds moves no stamp, a device clock that steps back restarts it") {
   dpcr::DeviceTimeBase base;
   for (int i = 0; i < 1000; ++i) base.ToHostUs(7000000 + i * 10000, 1000000 + i * 10000 + 300);
   // A reader stalled for 4 s: the frames it then reads are late, their stamps stay right.

@@ -127,7 +127,7 @@ TEST_CASE("Same seed gives the same stream, another seed a different one", "[sim
   CHECK(a != c);
 }
 
-TEST_CASE("Seeds vary the cleaning plan; a fixed plan is the world's own", "[sim]") {
+TEST_CASE("Seeds vary the cleaning plan, a fixed plan is the world's own", "[sim]") {
   const World w = LoadBuiltinWorld("apartment");
   SimConfig config;
   config.duration_min = 0.1;
