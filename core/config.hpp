@@ -141,6 +141,12 @@ struct FrontEndConfig {
   // Odometry prior of the first registration (PosePrior units: unit-weight point residuals).
   float prior_info_xy = 20.0f;
   float prior_info_theta = 20.0f;
+  // A first registration rejected from the wheels' prediction is tried again from the constant
+  // velocity's when the two differ by more than these (0: never; wheels without a gyro heading).
+  // Logged odometry stalls and then catches up in one step (mit-csail.clf: 0.85 m and 50 deg in
+  // 0.2 s): from that step no registration converges, and the pose it leaves sends the robot lost.
+  float odometry_doubt_m = 0.1f;
+  float odometry_doubt_rad = 0.1f;
   // Second registration: at most this many submap obstacle cells as target points.
   int second_registration_max_points = 600;
   PlicpConfig first_registration;

@@ -325,6 +325,7 @@ void FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, st
                     PriorXyScale(motion), PriorThetaScale(motion));
   bent_ = false;
   if (!motion.wheels() && dt_us > 0 && !beams.empty()) r = RegisterRedeskewed(beams, motion, dt_us, projected, r);
+  if (r.verdict != Status::kOk && motion.wheels() && !motion.gyro()) r = RegisterFromConstantVelocity(projected->hits, dt_us, predicted, r);
   ++fe_counters_.first_registrations;
   weak_match_ = r.verdict != Status::kOk || r.inlier_ratio < f.weak_match_inlier_ratio;
   if (r.verdict == Status::kOk) {
@@ -366,6 +367,23 @@ RegistrationResult FrontEnd::RegisterRedeskewed(Span<const Beam> beams, const Sc
   // Only the first one was accepted: its points back.
   *projected = ProjectScan(beams, config_.lidar, motion, s_.hits, s_.free_ends);
   return first;
+}
+
+RegistrationResult FrontEnd::RegisterFromConstantVelocity(std::size_t hits, std::int64_t dt_us, const Pose2& predicted,
+                                                          const RegistrationResult& rejected) {
+  const FrontEndConfig& f = config_.front_end;
+  const Pose2 guess = pose_ * ConstantVelocity(dt_us);
+  const Pose2 apart = Between(predicted, guess);
+  const bool doubt_m = f.odometry_doubt_m > 0.0f && std::hypot(apart.x, apart.y) > f.odometry_doubt_m;
+  const bool doubt_rad = f.odometry_doubt_rad > 0.0f && std::fabs(apart.theta) > f.odometry_doubt_rad;
+  if (!doubt_m && !doubt_rad) return rejected;
+  ++fe_counters_.odometry_doubted;
+  const RegistrationResult again =
+      RegisterFirst(*s_.submap_reference, nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
+                    Span<const Point2>(s_.hits.data(), hits), pose_, guess, f, s_.correspondences, &fe_counters_.search);
+  if (again.verdict != Status::kOk) return rejected;
+  ++fe_counters_.odometry_overruled;
+  return again;
 }
 
 RegistrationResult FrontEnd::TrackBent(RegistrationResult r, const Pose2& from) {

@@ -42,8 +42,12 @@ struct FrontEndCounters {
   std::uint32_t region_line_builds = 0;
   std::uint32_t reference_cells_dropped = 0;  // obstacle cells past a reference's capacity
   std::uint32_t submap_early_builds = 0;      // submap references rebuilt after a weak match
-  std::uint32_t redeskews = 0;
-  std::uint32_t bent_tracked = 0;  // bent scans tracked past the residual bound (FrontEnd::TrackBent)  // scans projected and registered again with the motion found (no wheels)
+  std::uint32_t redeskews = 0;     // scans projected and registered again with the motion found (no wheels)
+  std::uint32_t bent_tracked = 0;  // bent scans tracked past the residual bound (FrontEnd::TrackBent)
+  // First registrations rejected from the wheels' prediction that were tried again from the
+  // constant velocity's (FrontEndConfig::odometry_doubt_*), and how many of those were accepted.
+  std::uint32_t odometry_doubted = 0;
+  std::uint32_t odometry_overruled = 0;
   FirstRegistrationStats search;               // the coarse pose search of the first registration
 };
 
@@ -126,6 +130,12 @@ class FrontEnd {
   // Wheels or a gyro measure the turns (the newest odometry sample says which the robot has).
   bool HeadingMeasured() const { return !odometry_.empty() && (odometry_.newest().has_wheels || odometry_.newest().has_gyro); }
   static float PriorThetaScale(const ScanMotion& motion) { return motion.wheels() || motion.gyro() ? 1.0f : kPriorThetaWithoutHeading; }
+  // A first registration rejected from the wheels' prediction, tried again from the constant
+  // velocity's when they differ by more than FrontEndConfig::odometry_doubt_*: the answer if
+  // accepted, else `rejected`. (The scan was projected with the wheels' motion: logged odometry
+  // carries no beam times, and a device's wheels that glitch between two revolutions bend neither.)
+  RegistrationResult RegisterFromConstantVelocity(std::size_t hits, std::int64_t dt_us, const Pose2& predicted,
+                                                  const RegistrationResult& rejected);
   // A rejected registration of a bent scan accepted for its pose when only the residual bound
   // failed, up to twice it (counted bent_tracked); `from`: where the registration started.
   RegistrationResult TrackBent(RegistrationResult r, const Pose2& from);

@@ -16,6 +16,7 @@
 #include "host_sim/apps/progress.hpp"
 #include "host_sim/apps/scan_times.hpp"
 #include "host_sim/carmen/carmen_reader.hpp"
+#include "host_sim/carmen/laser_odometry.hpp"
 #include "host_sim/carmen/laser_scan.hpp"
 #include "host_sim/drivers/device_files.hpp"
 #include "host_sim/output/map_file_io.hpp"
@@ -144,17 +145,23 @@ dpcr::OdometrySample Odometry(std::int64_t stamp_us, dpcr::Pose2 pose) {
   return s;
 }
 
-// Maps a whole CARMEN log; returns how many scans had to be decimated. CarmenError becomes a
-// runtime_error naming the file and line.
+struct CarmenInputCounts {
+  long decimated_scans = 0;
+  long repeated_odometry = 0;  // laser records whose odometry pose repeated the last (LaserOdometry)
+};
+
+// Maps a whole CARMEN log; returns how many scans had to be decimated and how many odometry
+// poses were repeats. CarmenError becomes a runtime_error naming the file and line.
 template <class MapperType>
-long MapCarmenLog(const Options& opt, std::ifstream& in, MapperType* mapper, dpcr::carmen::CarmenReader* reader,
-                  dpcr::output::RunRecord* run) {
+CarmenInputCounts MapCarmenLog(const Options& opt, std::ifstream& in, MapperType* mapper, dpcr::carmen::CarmenReader* reader,
+                               dpcr::output::RunRecord* run) {
   static typename MapperType::ScanType scan;  // ~MiBs for big profiles: not on the stack
   const auto file_size = std::filesystem::file_size(opt.carmen);
   dpcr::carmen::Record rec;
   bool configured = false;
   dpcr::apps::Progress progress("replay");
-  long decimated_scans = 0;
+  CarmenInputCounts counts;
+  dpcr::carmen::LaserOdometry laser_odometry;
   try {
     while (reader->Next(&rec)) {
       if (!configured) {  // PARAM lines come first in CARMEN logs; the mount is fixed at the first record
@@ -167,9 +174,11 @@ long MapCarmenLog(const Options& opt, std::ifstream& in, MapperType* mapper, dpc
         if (opt.odometry == "odom") mapper->AddOdometry(Odometry(rec.odom.stamp_us, rec.odom.pose));
         continue;
       }
-      // The odometry pose logged with the scan: exactly aligned in time with it.
-      if (opt.odometry == "laser") mapper->AddOdometry(Odometry(rec.laser.stamp_us, rec.laser.odom_pose));
-      if (dpcr::carmen::ToScan(rec.laser, &scan)) ++decimated_scans;
+      // The odometry pose logged with the scan: exactly aligned in time with it, unless repeated.
+      if (opt.odometry == "laser" && laser_odometry.IsNewMeasurement(rec.laser.odom_pose)) {
+        mapper->AddOdometry(Odometry(rec.laser.stamp_us, rec.laser.odom_pose));
+      }
+      if (dpcr::carmen::ToScan(rec.laser, &scan)) ++counts.decimated_scans;
       dpcr::output::AddTimedScan(*mapper, scan, run);
       if ((run->estimate.size() & 63) == 0) progress.Update(static_cast<double>(in.tellg()) / static_cast<double>(file_size));
     }
@@ -179,7 +188,8 @@ long MapCarmenLog(const Options& opt, std::ifstream& in, MapperType* mapper, dpc
                              std::string(e.what()).substr(std::string(e.what()).find(':') + 2));
   }
   progress.Done();
-  return decimated_scans;
+  counts.repeated_odometry = laser_odometry.repeats();
+  return counts;
 }
 
 template <class Profile>
@@ -195,7 +205,7 @@ int ReplayCarmen(const Options& opt) {
   const auto start = Clock::now();
   dpcr::carmen::CarmenReader reader(in);
   dpcr::output::RunRecord run;
-  const long decimated_scans = MapCarmenLog(opt, in, &mapper, &reader, &run);
+  const CarmenInputCounts counts = MapCarmenLog(opt, in, &mapper, &reader, &run);
   if (run.estimate.empty()) throw std::runtime_error(opt.carmen + ": no laser scans in the log");
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   if (!opt.relations.empty()) run.relations = &relations;
@@ -206,7 +216,8 @@ int ReplayCarmen(const Options& opt) {
   const auto& rc = reader.counters();
   metrics["input"] = {{"file", opt.carmen}, {"laser_records", rc.laser_records}, {"odom_records", rc.odom_records},
                       {"laser_timestamp_steps_back", rc.laser_steps_back}, {"other_messages", rc.other_messages},
-                      {"decimated_scans", decimated_scans}, {"odometry_source", opt.odometry}};
+                      {"decimated_scans", counts.decimated_scans}, {"odometry_source", opt.odometry},
+                      {"repeated_odometry_poses_skipped", counts.repeated_odometry}};
   metrics = dpcr::output::WriteRunOutputs(opt.out, dpcr::output::RenderFused(mapper), run, metrics);
 
   PrintSummary(run, metrics, opt.out);

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "host_sim/carmen/carmen_reader.hpp"
+#include "host_sim/carmen/laser_odometry.hpp"
 #include "host_sim/carmen/laser_scan.hpp"
 
 using dpcr::carmen::CarmenError;
@@ -142,4 +143,14 @@ TEST_CASE("Laser records become scans, more beams than a scan holds are decimate
   CHECK(small.beams[3].angle_rad == Approx(-0.91f));
   CHECK(dpcr::carmen::ToScan(laser, &small));  // a scan reused: overwritten, not appended
   CHECK(small.beams.size() == 4);
+}
+
+TEST_CASE("A laser record's odometry pose repeated exactly is no new measurement") {
+  dpcr::carmen::LaserOdometry odometry;
+  CHECK(odometry.IsNewMeasurement(dpcr::Pose2{0.0f, 0.0f, 0.0f}));  // the first one is
+  CHECK_FALSE(odometry.IsNewMeasurement(dpcr::Pose2{0.0f, 0.0f, 0.0f}));
+  CHECK_FALSE(odometry.IsNewMeasurement(dpcr::Pose2{0.0f, 0.0f, 0.0f}));
+  CHECK(odometry.IsNewMeasurement(dpcr::Pose2{0.85f, 0.1f, 0.8f}));  // the catch-up step
+  CHECK(odometry.IsNewMeasurement(dpcr::Pose2{0.85f, 0.1f, 0.81f}));  // any field differing
+  CHECK(odometry.repeats() == 2);
 }

@@ -153,6 +153,8 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(front_end.uncertain_turn_rad, (std::vector<double>{-1.0, kNaN, kInf, 4.0})),
       FLOAT_FIELD(front_end.prior_info_xy, kNonNegative),
       FLOAT_FIELD(front_end.prior_info_theta, kNonNegative),
+      FLOAT_FIELD(front_end.odometry_doubt_m, kNonNegative),
+      FLOAT_FIELD(front_end.odometry_doubt_rad, (std::vector<double>{-1.0, kNaN, kInf, 4.0})),
       INT_FIELD(front_end.second_registration_max_points, kCount),  // 0 divided by zero in SubmapTarget
       INT_FIELD(front_end.min_start_hits, (std::vector<double>{-1.0, -2e9, 1e9})),
       FLOAT_FIELD(front_end.redeskew_min_m, kNonNegative),
