@@ -95,6 +95,18 @@ struct LoopRun {
   dpcr::CandumpSource can;
 };
 
+// Runs `firmware` (started, over `run`'s ports) until half a second after the recording ends and
+// finishes it; returns what it logged (`log` is closed).
+std::string RunToEnd(dpcr::board::Firmware* firmware, LoopRun* run, const OfficeStreams& o, std::FILE* log) {
+  dpcr::test::ReplayWaiter waiter(
+      &run->clock, [&] { return run->uart.next_stamp_us(); }, [&] { return run->can.next_stamp_us(); }, o.end_us() + 500000);
+  CHECK(dpcr::board::RunFirmwareLoop(firmware, &waiter, run->clock) == 0);
+  CHECK(firmware->Finish(0) == 0);
+  const std::string text = ReadLog(log);
+  std::fclose(log);
+  return text;
+}
+
 }  // namespace
 
 TEST_CASE("firmware loop on fake ports maps as the device replay does, the map file saved once, loadable") {
@@ -109,13 +121,8 @@ TEST_CASE("firmware loop on fake ports maps as the device replay does, the map f
   dpcr::board::Firmware firmware(config, dpcr::board::FirmwarePorts{&run.uart, &run.can, &run.clock, &store, &notifier}, log);
   REQUIRE(firmware.Start());
   firmware.Running();
-  dpcr::test::ReplayWaiter waiter(
-      &run.clock, [&] { return run.uart.next_stamp_us(); }, [&] { return run.can.next_stamp_us(); }, o.end_us() + 500000);
-  CHECK(dpcr::board::RunFirmwareLoop(&firmware, &waiter, run.clock) == 0);
-  CHECK(firmware.Finish(0) == 0);
-  const std::string text = ReadLog(log);
+  const std::string text = RunToEnd(&firmware, &run, o, log);
   INFO(text);
-  std::fclose(log);
 
   REQUIRE(o.scans > 100);
   CHECK(firmware.scans() == o.scans);
@@ -277,12 +284,7 @@ TEST_CASE("firmware loop: wheels silent (frames missing) -> lidar alone, their r
   std::FILE* log = std::tmpfile();
   dpcr::board::Firmware firmware(ConfigFor(o), dpcr::board::FirmwarePorts{&run.uart, &run.can, &run.clock, &store, nullptr}, log);
   REQUIRE(firmware.Start());
-  dpcr::test::ReplayWaiter waiter(
-      &run.clock, [&] { return run.uart.next_stamp_us(); }, [&] { return run.can.next_stamp_us(); }, o.end_us() + 500000);
-  CHECK(dpcr::board::RunFirmwareLoop(&firmware, &waiter, run.clock) == 0);
-  CHECK(firmware.Finish(0) == 0);
-  const std::string text = ReadLog(log);
-  std::fclose(log);
+  const std::string text = RunToEnd(&firmware, &run, o, log);
   INFO(text);
   CHECK(text.find("no wheel ticks on CAN can0 for 500 ms: mapping from the lidar alone") != std::string::npos);
   CHECK(text.find("wheels back on CAN can0 after 2.") != std::string::npos);
@@ -300,12 +302,7 @@ TEST_CASE("firmware loop: a kidnap's status frames make the robot lost as in the
   std::FILE* log = std::tmpfile();
   dpcr::board::Firmware firmware(ConfigFor(o), dpcr::board::FirmwarePorts{&run.uart, &run.can, &run.clock, &store, nullptr}, log);
   REQUIRE(firmware.Start());
-  dpcr::test::ReplayWaiter waiter(
-      &run.clock, [&] { return run.uart.next_stamp_us(); }, [&] { return run.can.next_stamp_us(); }, o.end_us() + 500000);
-  CHECK(dpcr::board::RunFirmwareLoop(&firmware, &waiter, run.clock) == 0);
-  CHECK(firmware.Finish(0) == 0);
-  const std::string text = ReadLog(log);
-  std::fclose(log);
+  const std::string text = RunToEnd(&firmware, &run, o, log);
   INFO(text);
   REQUIRE(o.lifted_scans >= 30);  // carried 3-6 s: the replay kept those scans out
   CHECK(firmware.mapper().counters().lifted_scans == o.lifted_scans);

@@ -8,26 +8,11 @@
 #include <memory>
 
 #include "core/mapper.hpp"
+#include "tests/core/cabinet_room.hpp"
 
 namespace {
 
 using M = dpcr::Mapper<dpcr::VacuumProfile>;
-constexpr float kRoomX = 6.0f, kRoomY = 4.0f;
-
-float Range(float x, float y, float a) {
-  const float c = std::cos(a), s = std::sin(a);
-  float r = 1e9f;
-  if (c > 1e-6f) r = std::fmin(r, (kRoomX - x) / c);
-  if (c < -1e-6f) r = std::fmin(r, -x / c);
-  if (s > 1e-6f) r = std::fmin(r, (kRoomY - y) / s);
-  if (s < -1e-6f) r = std::fmin(r, -y / s);
-  // A cabinet in one corner: the room is not symmetric.
-  if (c > 1e-6f) {
-    const float d = (5.0f - x) / c, hy = y + d * s;
-    if (d > 0.0f && hy > 3.0f) r = std::fmin(r, d);
-  }
-  return r;
-}
 
 // Driving at 0.25 m/s while turning at 0.5 rad/s, from (1.5, 1.2).
 dpcr::Pose2 Truth(float t) {
@@ -61,7 +46,7 @@ GlitchResult Drive(const dpcr::MapperConfig& config) {
     for (int b = 0; b < 360; ++b) {
       dpcr::Beam beam;
       beam.angle_rad = dpcr::NormalizeAngle(2.0f * dpcr::kPi * static_cast<float>(b) / 360.0f);
-      beam.range_m = Range(robot.x, robot.y, robot.theta + beam.angle_rad);
+      beam.range_m = dpcr::test::CabinetRoomRange(robot.x, robot.y, robot.theta + beam.angle_rad);
       (void)scan.beams.push_back(beam);
     }
     (void)m->AddScan(scan);

@@ -8,11 +8,11 @@
 #include <memory>
 
 #include "core/mapper.hpp"
+#include "tests/core/cabinet_room.hpp"
 
 namespace {
 
 using M = dpcr::Mapper<dpcr::VacuumProfile>;
-constexpr float kRoomX = 6.0f, kRoomY = 4.0f;
 constexpr float kRate = 2.0943951f, kAccel = 6.0f;  // 120°/s, reached in 0.35 s
 constexpr float kRevolutionS = 0.2f;
 
@@ -39,21 +39,6 @@ float Turn(float t) {
   if (t < t2) return full + kTurnRate * (t - t1);
   if (t < t3) return full + kTurnRate * cruise + kTurnRate * (t - t2) - 0.5f * kTurnAccel * (t - t2) * (t - t2);
   return kAngle;
-}
-
-float Range(float x, float y, float a) {
-  const float c = std::cos(a), s = std::sin(a);
-  float r = 1e9f;
-  if (c > 1e-6f) r = std::fmin(r, (kRoomX - x) / c);
-  if (c < -1e-6f) r = std::fmin(r, -x / c);
-  if (s > 1e-6f) r = std::fmin(r, (kRoomY - y) / s);
-  if (s < -1e-6f) r = std::fmin(r, -y / s);
-  // A cabinet in one corner: the room is not symmetric.
-  if (c > 1e-6f) {
-    const float d = (5.0f - x) / c, hy = y + d * s;
-    if (d > 0.0f && hy > 3.0f) r = std::fmin(r, d);
-  }
-  return r;
 }
 
 struct SpinResult {
@@ -101,7 +86,7 @@ SpinResult Spin(bool gyro, float (*heading)(float) = Heading, float at_rest_from
       dpcr::Beam beam;
       beam.angle_rad = dpcr::NormalizeAngle(2.0f * dpcr::kPi * static_cast<float>(b) / 360.0f);
       beam.offset_us = static_cast<std::int32_t>(std::lround(offset * 1e6f));
-      beam.range_m = Range(x, y, heading(t_scan + offset) + beam.angle_rad);
+      beam.range_m = dpcr::test::CabinetRoomRange(x, y, heading(t_scan + offset) + beam.angle_rad);
       if (noisy) beam.range_m = Degrade(beam.range_m, &rng);
       (void)scan.beams.push_back(beam);
     }

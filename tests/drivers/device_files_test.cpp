@@ -73,6 +73,16 @@ class CheckingSink : public dpcr::DeviceSink {
   const Run* run_;
 };
 
+// The run written as device files into `dir`.
+void Emit(const Run& run, const dpcr::DeviceFilesConfig& files, const std::string& dir) {
+  dpcr::DeviceEmitter emitter(files);
+  std::string error;
+  REQUIRE(emitter.Open(dir, &error));
+  for (const auto& s : run.scans) REQUIRE(emitter.AddScan(*s));
+  for (const auto& o : run.odometry) emitter.AddOdometry(o);
+  REQUIRE(emitter.Close(&error));
+}
+
 }  // namespace
 
 TEST_CASE("emit device files then replay gives the same scans and trajectory") {
@@ -80,14 +90,7 @@ TEST_CASE("emit device files then replay gives the same scans and trajectory") {
   const dpcr::test::ScopedTempDir temp("device_files");
   const std::string dir = temp.str();
   dpcr::DeviceFilesConfig files;
-  {
-    dpcr::DeviceEmitter emitter(files);
-    std::string error;
-    REQUIRE(emitter.Open(dir, &error));
-    for (const auto& s : run.scans) REQUIRE(emitter.AddScan(*s));
-    for (const auto& o : run.odometry) emitter.AddOdometry(o);
-    REQUIRE(emitter.Close(&error));
-  }
+  Emit(run, files, dir);
   dpcr::LidarStreamConfig lidar;
   lidar.assembler.angle_map = files.angle_map;
   CheckingSink sink(&run);
@@ -159,15 +162,6 @@ Run MakeLiftedRun(int from, int to) {
   Run run = MakeRun();
   for (int i = from; i < to; ++i) run.odometry[static_cast<std::size_t>(i)].lifted = true;
   return run;
-}
-
-void Emit(const Run& run, const dpcr::DeviceFilesConfig& files, const std::string& dir) {
-  dpcr::DeviceEmitter emitter(files);
-  std::string error;
-  REQUIRE(emitter.Open(dir, &error));
-  for (const auto& s : run.scans) REQUIRE(emitter.AddScan(*s));
-  for (const auto& o : run.odometry) emitter.AddOdometry(o);
-  REQUIRE(emitter.Close(&error));
 }
 
 struct Replayed {
