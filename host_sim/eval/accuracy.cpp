@@ -16,7 +16,20 @@ struct Vec2 {
   double x, y;
 };
 
-// Index of the ground-truth pose nearest in time to `t`, or -1 beyond the tolerance.
+double Mean(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+
+double Std(const std::vector<double>& v, double mean) {
+  double s = 0.0;
+  for (double x : v) s += (x - mean) * (x - mean);
+  return v.size() < 2 ? 0.0 : std::sqrt(s / static_cast<double>(v.size() - 1));
+}
+
+}  // namespace
+
 long Nearest(const Trajectory& gt, std::int64_t t, std::int64_t tolerance_us) {
   auto it = std::lower_bound(gt.begin(), gt.end(), t,
                              [](const StampedPose& p, std::int64_t s) { return p.stamp_us < s; });
@@ -32,20 +45,6 @@ long Nearest(const Trajectory& gt, std::int64_t t, std::int64_t tolerance_us) {
   }
   return best;
 }
-
-double Mean(const std::vector<double>& v) {
-  double s = 0.0;
-  for (double x : v) s += x;
-  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
-}
-
-double Std(const std::vector<double>& v, double mean) {
-  double s = 0.0;
-  for (double x : v) s += (x - mean) * (x - mean);
-  return v.size() < 2 ? 0.0 : std::sqrt(s / static_cast<double>(v.size() - 1));
-}
-
-}  // namespace
 
 double MeanOfLargestTenth(std::vector<double> errors) {
   if (errors.empty()) return 0.0;

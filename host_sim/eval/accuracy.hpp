@@ -27,6 +27,9 @@ struct AccuracyResult {
 AccuracyResult EvaluateAgainstGroundTruth(const Trajectory& estimate, const Trajectory& ground_truth,
                                           double sample_period_s = 1.0, std::int64_t tolerance_us = 10000);
 
+// Index of the pose of `gt` (sorted by stamp) nearest in time to `t`, or -1 beyond the tolerance.
+long Nearest(const Trajectory& gt, std::int64_t t, std::int64_t tolerance_us);
+
 // The mean of the largest 10 % of `errors` (at least one); 0 for none.
 double MeanOfLargestTenth(std::vector<double> errors);
 

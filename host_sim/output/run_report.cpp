@@ -7,6 +7,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "host_sim/eval/anchor_errors.hpp"
+
 namespace dpcr::output {
 namespace {
 
@@ -27,6 +29,24 @@ void WriteTumFile(const std::string& path, const dpcr::eval::Trajectory& t) {
 nlohmann::json RelationsJson(const dpcr::eval::RelationsResult& r) {
   return {{"trans_mean_m", r.trans_mean_m}, {"trans_std_m", r.trans_std_m}, {"rot_mean_deg", r.rot_mean_deg},
           {"rot_std_deg", r.rot_std_deg},   {"matched", r.matched},         {"unmatched", r.unmatched}};
+}
+
+// metrics.json "accuracy": the error a perfect back end would leave (every map at the anchor that
+// fits the truth best) and, per map, how far its anchor is from that one (docs/back-end.md).
+void AddAnchorDecomposition(const RunRecord& run, nlohmann::json* accuracy) {
+  if (run.scan_region.size() != run.estimate.size() || run.scan_in_region.size() != run.estimate.size()) return;
+  std::vector<dpcr::eval::MappedScan> scans;
+  for (std::size_t i = 0; i < run.estimate.size(); ++i) {
+    if (run.estimate[i].stamp_us >= run.accuracy_from_us) scans.push_back({run.estimate[i], run.scan_region[i], run.scan_in_region[i]});
+  }
+  const auto d = dpcr::eval::DecomposeByAnchors(scans, run.final_anchors, run.ground_truth);
+  (*accuracy)["best_anchors_loc_err_ave_m"] = d.best_anchors_loc_err_ave_m;
+  nlohmann::json regions = nlohmann::json::array();
+  for (const auto& r : d.regions) {
+    regions.push_back({{"region", r.region}, {"scans", r.scans}, {"anchor_offset_m", r.anchor_offset_m},
+                       {"anchor_offset_deg", r.anchor_offset_deg}, {"in_map_mean_m", r.in_map_mean_m}});
+  }
+  (*accuracy)["regions"] = regions;
 }
 
 }  // namespace
@@ -90,6 +110,7 @@ nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, cons
     if (run.accuracy_from_us != INT64_MIN && !run.estimate.empty()) {
       metrics["accuracy"]["from_s"] = static_cast<double>(run.accuracy_from_us - run.estimate.front().stamp_us) * 1e-6;
     }
+    AddAnchorDecomposition(run, &metrics["accuracy"]);
   }
   if (run.relations != nullptr) {
     const auto r = dpcr::eval::EvaluateRelations(run.estimate, *run.relations);

@@ -27,6 +27,7 @@ struct RunRecord {
   // so that the trajectory follows the back end's later corrections (FinalizeTrajectory).
   std::vector<int> scan_region;
   std::vector<dpcr::Pose2> scan_in_region;
+  std::vector<dpcr::Pose2> final_anchors;  // each map's anchor at the end (FinalizeTrajectory)
   // AddScan calls in which the back end worked (a queued job or a loop-closure search), and the
   // time they took (front end included: the core has no clock of its own).
   int backend_calls = 0;
@@ -76,6 +77,8 @@ void AddTimedScan(MapperType& mapper, const typename MapperType::ScanType& scan,
 // (the globally consistent trajectory, as the maps are); scans in no map keep their online pose.
 template <class MapperType>
 void FinalizeTrajectory(const MapperType& mapper, RunRecord* run) {
+  run->final_anchors.clear();
+  for (int r = 0; r < mapper.region_count(); ++r) run->final_anchors.push_back(mapper.region_anchor(r));
   for (std::size_t i = 0; i < run->estimate.size() && i < run->scan_region.size(); ++i) {
     const int r = run->scan_region[i];
     if (r >= 0 && r < mapper.region_count()) run->estimate[i].pose = mapper.region_anchor(r) * run->scan_in_region[i];
