@@ -86,6 +86,23 @@ inline nlohmann::json KidnapMetrics(const std::vector<dpcr::sim::KidnapEvent>& k
           {"each", each}};
 }
 
+// Every fix of the run, whatever lost the robot (a kidnap, a rejection streak, a slip without
+// odometry): its error, and how many were wrong (farther off than `max_error_m`).
+inline nlohmann::json FixMetrics(const std::vector<Recovery>& recoveries, const dpcr::Pose2& align, double max_error_m) {
+  int wrong = 0;
+  double worst_m = 0.0, worst_deg = 0.0;
+  nlohmann::json each = nlohmann::json::array();
+  for (const Recovery& r : recoveries) {
+    const FixError err = ErrorOf(r, align);
+    if (err.position_m > max_error_m) ++wrong;
+    worst_m = std::max(worst_m, err.position_m);
+    worst_deg = std::max(worst_deg, err.heading_deg);
+    each.push_back({{"t_s", static_cast<double>(r.stamp_us) * 1e-6}, {"error_m", err.position_m}, {"error_deg", err.heading_deg}});
+  }
+  return {{"fixes", recoveries.size()}, {"wrong_fixes", wrong}, {"wrong_fix_threshold_m", max_error_m},
+          {"max_error_m", worst_m}, {"max_error_deg", worst_deg}, {"each", each}};
+}
+
 // A start at an unknown pose: the first fix after `start_us`.
 inline nlohmann::json UnknownStartMetrics(std::int64_t start_us, const std::vector<Recovery>& recoveries, const dpcr::Pose2& align) {
   if (recoveries.empty()) return {{"recovered", false}};

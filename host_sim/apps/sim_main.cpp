@@ -189,6 +189,7 @@ void AddRelocalisationFigures(const Options& opt, const MapperType& mapper, cons
   if (mapper.config().localisation.unknown_start && !run.estimate.empty()) {
     r["start_fix"] = dpcr::apps::UnknownStartMetrics(run.estimate.front().stamp_us, recoveries, align);
   }
+  r["all_fixes"] = dpcr::apps::FixMetrics(recoveries, align, 0.3);
   if (!run.ground_truth.empty()) r["accuracy_when_placed"] = dpcr::apps::PlacedAccuracy(run.estimate, run.ground_truth, lost);
 }
 
