@@ -31,7 +31,7 @@ struct RegionAnchorError {
 struct AnchorDecomposition {
   double loc_err_ave_m = 0.0;               // the run's own (as EvaluateAgainstGroundTruth)
   double best_anchors_loc_err_ave_m = 0.0;  // every map at its best-fitting anchor
-  std::vector<RegionAnchorError> regions;   // by region index
+  std::vector<RegionAnchorError> regions;   // the maps holding scans with ground truth, by index
 };
 
 // `anchors[r]`: map r's final anchor. The best anchor of a map takes the mean heading offset of
