@@ -93,17 +93,30 @@ CanDecodeResult WheelCanDecoder::Feed(const CanFrame& frame) {
   }
 }
 
-CanDecodeResult WheelCanDecoder::FeedTicks(const CanFrame& frame) {
-  if (frame.dlc != kWheelTicksDlc) {
+// What every stream's frame goes through: its DLC, its sequence (lost, duplicated, reordered
+// frames) and its device time. kTicks: accepted and the stream's clock advanced (the caller reads
+// the payload); otherwise the verdict to return.
+CanDecodeResult WheelCanDecoder::Accept(Stream* stream, const CanFrame& frame, std::uint8_t dlc, int sequence_byte,
+                                        int time_byte) {
+  if (frame.dlc != dlc) {
     ++counters_.bad_dlc;
     return CanDecodeResult::kBadDlc;
   }
-  const std::uint8_t sequence = frame.data[4];
-  const CanDecodeResult r = CheckSequence(&ticks_stream_, sequence);
+  const std::uint8_t sequence = frame.data[sequence_byte];
+  const CanDecodeResult r = CheckSequence(stream, sequence);
+  if (r != CanDecodeResult::kTicks) return r;
+  AdvanceTime(stream, LoadLe24(&frame.data[time_byte]), !stream->started);
+  stream->started = true;
+  stream->last_sequence = sequence;
+  return CanDecodeResult::kTicks;
+}
+
+CanDecodeResult WheelCanDecoder::FeedTicks(const CanFrame& frame) {
+  const bool first = !ticks_stream_.started;
+  const CanDecodeResult r = Accept(&ticks_stream_, frame, kWheelTicksDlc, 4, 5);
   if (r != CanDecodeResult::kTicks) return r;
   const std::uint16_t left = LoadLe16(&frame.data[0]);
   const std::uint16_t right = LoadLe16(&frame.data[2]);
-  const bool first = !ticks_stream_.started;
   if (first) {
     ticks_.left_ticks = left;
     ticks_.right_ticks = right;
@@ -113,26 +126,14 @@ CanDecodeResult WheelCanDecoder::FeedTicks(const CanFrame& frame) {
   }
   last_left_ = left;
   last_right_ = right;
-  AdvanceTime(&ticks_stream_, LoadLe24(&frame.data[5]), first);
-  ticks_stream_.started = true;
-  ticks_stream_.last_sequence = sequence;
   ticks_.device_time_us = ticks_stream_.time_us;
   ++counters_.ticks_frames;
   return CanDecodeResult::kTicks;
 }
 
 CanDecodeResult WheelCanDecoder::FeedGyro(const CanFrame& frame) {
-  if (frame.dlc != kGyroDlc) {
-    ++counters_.bad_dlc;
-    return CanDecodeResult::kBadDlc;
-  }
-  const std::uint8_t sequence = frame.data[2];
-  const CanDecodeResult r = CheckSequence(&gyro_stream_, sequence);
+  const CanDecodeResult r = Accept(&gyro_stream_, frame, kGyroDlc, 2, 3);
   if (r != CanDecodeResult::kTicks) return r;
-  const bool first = !gyro_stream_.started;
-  AdvanceTime(&gyro_stream_, LoadLe24(&frame.data[3]), first);
-  gyro_stream_.started = true;
-  gyro_stream_.last_sequence = sequence;
   gyro_.device_time_us = gyro_stream_.time_us;
   gyro_.yaw_rate_rad_s = static_cast<float>(static_cast<std::int16_t>(LoadLe16(&frame.data[0]))) * 0.001f;
   ++counters_.gyro_frames;
@@ -140,20 +141,11 @@ CanDecodeResult WheelCanDecoder::FeedGyro(const CanFrame& frame) {
 }
 
 CanDecodeResult WheelCanDecoder::FeedStatus(const CanFrame& frame) {
-  if (frame.dlc != kStatusDlc) {
-    ++counters_.bad_dlc;
-    return CanDecodeResult::kBadDlc;
-  }
-  const std::uint8_t sequence = frame.data[1];
-  const CanDecodeResult r = CheckSequence(&status_stream_, sequence);
+  const CanDecodeResult r = Accept(&status_stream_, frame, kStatusDlc, 1, 2);
   if (r != CanDecodeResult::kTicks) return r;
   const std::uint8_t flags = frame.data[0];
   // A newer sender may define more flags: the frame still says what bit 0 says.
   if ((flags & kStatusReservedFlags) != 0) ++counters_.reserved_flags;
-  const bool first = !status_stream_.started;
-  AdvanceTime(&status_stream_, LoadLe24(&frame.data[2]), first);
-  status_stream_.started = true;
-  status_stream_.last_sequence = sequence;
   status_.device_time_us = status_stream_.time_us;
   status_.lifted = (flags & kStatusLiftedFlag) != 0;
   ++counters_.status_frames;

@@ -111,6 +111,7 @@ class WheelCanDecoder {
   };
   CanDecodeResult CheckSequence(Stream* stream, std::uint8_t sequence);
   static void AdvanceTime(Stream* stream, std::uint32_t time_10us, bool first);
+  CanDecodeResult Accept(Stream* stream, const CanFrame& frame, std::uint8_t dlc, int sequence_byte, int time_byte);
   CanDecodeResult FeedTicks(const CanFrame& frame);
   CanDecodeResult FeedGyro(const CanFrame& frame);
   CanDecodeResult FeedStatus(const CanFrame& frame);
