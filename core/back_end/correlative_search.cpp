@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "core/back_end/square_sums.hpp"
 #include "core/base/assert.hpp"
 #include "core/grid/cell.hpp"
 #include "core/grid/tile_pool.hpp"
@@ -228,47 +229,17 @@ struct CloudScorer {
     }
     for (int i = 0; i < count; ++i) out[i] = sums[i];
   }
-  // Sixteen sums in one pass over the cloud, sums[4 j + i] for i, j < 4: Score(x0 + i, y0 + j)
-  // (the offsets of a block), or with kBounds the bound of the block at (x0 + kBlock i,
-  // y0 + kBlock j) (the blocks of a coarse block). The same integers as sixteen passes, at a
-  // fraction of the cost: a point whose sixteen look-ups all fall inside the grid (most) reads
-  // them at fixed distances from one address, with no bounds check each.
+  // Sixteen sums in one pass over the cloud (core/back_end/square_sums.hpp): the scores of the
+  // offsets of a block, or with kBounds the bounds of the blocks of a coarse block.
   template <bool kBounds>
   void Sixteen(int x0, int y0, std::uint32_t (&out)[16]) const {
-    constexpr int kStep = kBounds ? MatchGrid::kBlock : 1;
-    constexpr int kSpan = 3 * kStep;  // from a point's first look-up to its last, along each axis
-    // A look-up at or left of (below) this reads 0 (BoundAt: a block reaching in from the edge does not).
-    constexpr int kZeroAtOrBelow = kBounds ? -MatchGrid::kBlock : -1;
     const int w = grid.width(), h = grid.height();
-    const std::uint8_t* table = kBounds ? grid.bounds_data() : grid.cells_data();
-    std::uint32_t sums[16] = {};
-    if (extent.Inside(x0, y0, kSpan, kSpan, w, h)) {
-      const int offset = y0 * w + x0;
-      for (const MatchCell& c : cells) {
-        const std::uint8_t* p = table + (c.y * w + c.x + offset);
-        for (int j = 0; j < 4; ++j, p += kStep * w) {
-          for (int i = 0; i < 4; ++i) sums[4 * j + i] += p[i * kStep];
-        }
-      }
-      for (int k = 0; k < 16; ++k) out[k] = sums[k];
-      return;
+    if (kBounds) {
+      constexpr int kSpan = 3 * MatchGrid::kBlock;
+      SumBoundSquares(grid, cells, x0, y0, extent.Inside(x0, y0, kSpan + kBoundSquareSpareBytes, kSpan, w, h), out);
+    } else {
+      SumScoreSquares(grid, cells, x0, y0, extent.Inside(x0, y0, 3, 3, w, h), out);
     }
-    for (const MatchCell& c : cells) {
-      const int x = c.x + x0, y = c.y + y0;
-      if (x >= 0 && y >= 0 && x + kSpan < w && y + kSpan < h) {
-        const std::uint8_t* p = table + (y * w + x);
-        for (int j = 0; j < 4; ++j, p += kStep * w) {
-          for (int i = 0; i < 4; ++i) sums[4 * j + i] += p[i * kStep];
-        }
-      } else if (x < w && y < h && x + kSpan > kZeroAtOrBelow && y + kSpan > kZeroAtOrBelow) {  // else all read 0
-        for (int j = 0; j < 4; ++j) {
-          for (int i = 0; i < 4; ++i) {
-            sums[4 * j + i] += kBounds ? grid.BoundAt(x + i * kStep, y + j * kStep) : grid.AtCell(x + i, y + j);
-          }
-        }
-      }
-    }
-    for (int k = 0; k < 16; ++k) out[k] = sums[k];
   }
 };
 

@@ -124,18 +124,17 @@ TEST_CASE("The correlative search refuses twin rooms and corridors") {
   }
 }
 
-TEST_CASE("Branch and bound scores the same best pose as scoring every pose") {
-  Setup s(Room());
-  const Pose2 truth{6.2f, 3.1f, -0.3f};
-  const auto cloud = Cloud(Room(), truth);
-  const Pose2 guess{truth.x - 0.45f, truth.y + 0.3f, truth.theta + 0.05f};
-  const dpcr::CorrelativeSearchResult r = s.Search(cloud, guess, 0.8f, 0.1f);
-  // Brute force over the same lattice of poses (the search's angle step rule, whole match cells).
+namespace {
+
+// The best summed likelihood over the search's lattice of poses (its angle step rule, whole match
+// cells), scored pose by pose; a look-up outside the grid reads 0. `poses`: the lattice's size.
+std::uint32_t BruteForceBest(const Setup& s, const std::vector<Point2>& cloud, Pose2 guess, float window_m, float window_rad,
+                             std::uint32_t* poses) {
   float max_range = 1.0f;
   for (const Point2& p : cloud) max_range = std::fmax(max_range, std::hypot(p.x, p.y));
   const dpcr::CorrelativeSearchConfig config;
   const float step = std::fmin(std::fmax(s.grid->resolution_m() / max_range, config.min_angle_step_rad), config.max_angle_step_rad);
-  const int n_angles = static_cast<int>(0.1f / step), n_offsets = static_cast<int>(0.8f / s.grid->resolution_m());
+  const int n_angles = static_cast<int>(window_rad / step), n_offsets = static_cast<int>(window_m / s.grid->resolution_m());
   std::uint32_t best = 0;
   for (int a = -n_angles; a <= n_angles; ++a) {
     const dpcr::PointTransform t(Pose2{guess.x, guess.y, guess.theta + static_cast<float>(a) * step});
@@ -151,10 +150,45 @@ TEST_CASE("Branch and bound scores the same best pose as scoring every pose") {
       }
     }
   }
+  *poses = static_cast<std::uint32_t>((2 * n_angles + 1) * (2 * n_offsets + 1) * (2 * n_offsets + 1));
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("Branch and bound scores the same best pose as scoring every pose") {
+  Setup s(Room());
+  const Pose2 truth{6.2f, 3.1f, -0.3f};
+  const auto cloud = Cloud(Room(), truth);
+  const Pose2 guess{truth.x - 0.45f, truth.y + 0.3f, truth.theta + 0.05f};
+  const dpcr::CorrelativeSearchResult r = s.Search(cloud, guess, 0.8f, 0.1f);
+  std::uint32_t lattice = 0;
+  const std::uint32_t best = BruteForceBest(s, cloud, guess, 0.8f, 0.1f, &lattice);
   REQUIRE(r.score == Approx(static_cast<float>(best) / (255.0f * static_cast<float>(cloud.size()))).epsilon(1e-5));
   // And it scored far fewer poses than the lattice holds.
-  const std::uint32_t lattice = static_cast<std::uint32_t>((2 * n_angles + 1) * (2 * n_offsets + 1) * (2 * n_offsets + 1));
   REQUIRE(r.poses_evaluated < lattice);
+}
+
+TEST_CASE("Branch and bound scores every pose's best also where the window leaves the grid") {
+  // The room drawn against the grid's lower-left corner, or its upper-right one, or partly beyond
+  // it (its far walls off the grid, as a scan that sees past the map), and a window of 1.5 m: many
+  // offsets move part of the cloud (a few hundred points, past the search's 256-point batches)
+  // off the grid, where the bounds and scores take their edge paths.
+  const float shift = GENERATE(-0.9f, 3.7f, 4.6f);
+  std::vector<Segment> walls = Room();
+  for (Segment& w : walls) {
+    w.a = Point2{w.a.x + shift, w.a.y + shift};
+    w.b = Point2{w.b.x + shift, w.b.y + shift};
+  }
+  Setup s(walls);
+  const Pose2 truth{2.1f + shift, 1.9f + shift, 0.4f};
+  const auto cloud = Cloud(walls, truth);
+  REQUIRE(cloud.size() > 256);
+  const Pose2 guess{truth.x + 0.3f, truth.y - 0.2f, truth.theta - 0.04f};
+  const dpcr::CorrelativeSearchResult r = s.Search(cloud, guess, 1.5f, 0.08f);
+  std::uint32_t lattice = 0;
+  const std::uint32_t best = BruteForceBest(s, cloud, guess, 1.5f, 0.08f, &lattice);
+  REQUIRE(r.score == Approx(static_cast<float>(best) / (255.0f * static_cast<float>(cloud.size()))).epsilon(1e-5));
 }
 
 TEST_CASE("A best pose on the window's border is refused: the peak may lie outside") {
