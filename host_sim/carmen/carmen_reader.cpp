@@ -13,7 +13,8 @@ namespace {
 
 constexpr float kDegToRad = dpcr::kPi / 180.0f;
 
-bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
+// ' ', or one of '\t' '\n' '\v' '\f' '\r' (9-13, contiguous): isspace in the "C" locale.
+bool IsSpace(char c) { return c == ' ' || static_cast<unsigned char>(c - '\t') <= static_cast<unsigned char>('\r' - '\t'); }
 
 // Clinger's fast path: a plain decimal of at most 15 digits ("1.23", "-0.004", "17") is an exact
 // integer over an exact power of ten, and one IEEE division rounds the quotient correctly: the
@@ -23,20 +24,24 @@ bool ParseShortDecimal(const char* p, const char* last, double* value) {
   if (p < last && (*p == '-' || *p == '+')) ++p;
   static constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
   std::uint64_t mantissa = 0;
-  int digits = 0, decimals = -1;  // -1: no point yet
+  const char* const first_digit = p;
+  const char* point = nullptr;
   for (; p < last; ++p) {
-    if (*p >= '0' && *p <= '9') {
-      mantissa = mantissa * 10u + static_cast<std::uint64_t>(*p - '0');
-      ++digits;
-      if (decimals >= 0) ++decimals;
-    } else if (*p == '.' && decimals < 0) {
-      decimals = 0;
+    const unsigned digit = static_cast<unsigned char>(*p - '0');
+    if (digit <= 9u) {
+      mantissa = mantissa * 10u + digit;
+    } else if (*p == '.' && point == nullptr) {
+      point = p;
     } else {
       return false;
     }
   }
+  // Every character is a digit but the point; more than 15 digits could overflow the mantissa
+  // (it stops being exact past 2^53 anyway).
+  const long digits = (last - first_digit) - (point != nullptr ? 1 : 0);
   if (digits == 0 || digits > 15) return false;
-  const double v = static_cast<double>(mantissa) / kPow10[decimals < 0 ? 0 : decimals];
+  const long decimals = point != nullptr ? last - point - 1 : 0;
+  const double v = static_cast<double>(mantissa) / kPow10[decimals];
   *value = negative ? -v : v;
   return true;
 }
