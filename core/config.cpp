@@ -153,7 +153,9 @@ bool BackEndOk(const BackEndConfig& b) {
 bool LocalisationOk(const LocalisationConfig& c, const BackEndConfig& b) {
   return In(c.angles_per_step, 1, 2000) && In(c.coarsen, 2, 16) && AboveUpTo(c.coarse_angle_step_rad, 0.0f, kPi / 4) &&
          In(c.window_margin_m, 0.0f, kMaxDistanceM) && In(c.cloud_points, 10, b.search_points) &&
-         AboveUpTo(c.max_second_ratio, 0.0f, 1.0f) && In(c.min_inlier_ratio, 0.0f, 1.0f);
+         AboveUpTo(c.max_second_ratio, 0.0f, 1.0f) && In(c.min_inlier_ratio, 0.0f, 1.0f) &&
+         In(c.near_window_m, 0.0f, kMaxDistanceM) && In(c.near_window_mps, 0.0f, 10.0f) &&
+         In(c.clear_min_score, 0.0f, 1.0f) && In(c.clear_max_ratio, 0.0f, 1.0f);
 }
 
 // What the profile's storage holds.

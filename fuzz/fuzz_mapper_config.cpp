@@ -136,7 +136,8 @@ void ForEachField(M& m, dpcr::MapperConfig& c) {
       m(b.optimizer.kernel_phi), m(b.optimizer.damping);
   dpcr::LocalisationConfig& loc = c.localisation;
   m(loc.relocalise), m(loc.unknown_start), m(loc.localise_only), m(loc.coarsen), m(loc.coarse_angle_step_rad),
-      m(loc.angles_per_step), m(loc.window_margin_m), m(loc.cloud_points), m(loc.max_second_ratio), m(loc.min_inlier_ratio);
+      m(loc.angles_per_step), m(loc.window_margin_m), m(loc.cloud_points), m(loc.max_second_ratio), m(loc.min_inlier_ratio),
+      m(loc.near_window_m), m(loc.near_window_mps), m(loc.clear_min_score), m(loc.clear_max_ratio);
 }
 
 }  // namespace

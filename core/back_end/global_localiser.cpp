@@ -38,8 +38,33 @@ void GlobalLocaliser::Store(const BackEndStorage& s, int i, const Candidate& c) 
   p[2] = Point2{c.fine, static_cast<float>(c.map)};
 }
 
+void GlobalLocaliser::Hold(const BackEndStorage& s, const Pose2& pose) {
+  if (s.cloud.size() < kCandidateEntries + kStateEntries) return;
+  State(s, 2)[0] = Point2{pose.x, pose.y};
+  State(s, 3)[0] = Point2{pose.theta, 0.0f};
+  held_ = true;
+}
+
+bool GlobalLocaliser::Held(const BackEndStorage& s, Pose2* pose) const {
+  if (!held_) return false;
+  *pose = Pose2{State(s, 2)->x, State(s, 2)->y, State(s, 3)->x};
+  return true;
+}
+
+void GlobalLocaliser::BeginLocal(const BackEndStorage& s, Span<const Point2> hits, const LocalisationConfig& config,
+                                 int map, const Pose2& centre, float window_m) {
+  Begin(s, hits, config);
+  if (s.cloud.size() < kCandidateEntries + kStateEntries || map < 0 || !(window_m > 0.0f)) return;
+  State(s, 0)[0] = Point2{centre.x, centre.y};
+  State(s, 1)[0] = Point2{centre.theta, window_m};
+  const float tiles = std::ceil(window_m / kLocalTileHalfM);
+  local_tiles_ = static_cast<std::uint8_t>(tiles < 1.0f ? 1.0f : (tiles > 15.0f ? 15.0f : tiles));
+  local_map_ = static_cast<std::int16_t>(map);
+}
+
 void GlobalLocaliser::Begin(const BackEndStorage& s, Span<const Point2> hits, const LocalisationConfig& config) {
-  const std::size_t room = s.cloud.size() > kCandidateEntries ? s.cloud.size() - kCandidateEntries : 0;
+  const std::size_t reserved = kCandidateEntries + kStateEntries;
+  const std::size_t room = s.cloud.size() > reserved ? s.cloud.size() - reserved : 0;
   const std::size_t capacity = static_cast<std::size_t>(config.cloud_points) < room ? static_cast<std::size_t>(config.cloud_points) : room;
   std::size_t n = 0;
   if (capacity > 0 && !hits.empty()) {
@@ -54,6 +79,8 @@ void GlobalLocaliser::Begin(const BackEndStorage& s, Span<const Point2> hits, co
   }
   cloud_size_ = static_cast<std::uint16_t>(n);
   grid_map_ = -1;
+  local_tiles_ = 0;
+  local_map_ = -1;
   cursor_ = slice_ = candidates_ = 0;
   phase_ = kCoarse;
 }
@@ -94,8 +121,62 @@ void GlobalLocaliser::Offer(const BackEndStorage& s, Span<const RegionalMap> map
   }
 }
 
+void GlobalLocaliser::LocalCoarseStep(const BackEndStorage& s, Span<const RegionalMap> maps, float region_width_m,
+                                      std::int16_t threshold, const LocalisationConfig& config, const BackEndConfig& back_end) {
+  CorrelativeSearchConfig search = back_end.search;
+  search.min_angle_step_rad = search.max_angle_step_rad = config.coarse_angle_step_rad;
+  search.max_second_ratio = 1.0f;
+  const int n = local_tiles_, squares = n * n;
+  const Point2 c = *State(s, 0), cw = *State(s, 1);
+  const float half = cw.y / static_cast<float>(n);
+  const float half_slice = 0.5f * static_cast<float>(kSliceAngles) * config.coarse_angle_step_rad;
+  // The work of a global step (angles_per_step headings over a map's square and margin), counted in
+  // squares: a square's slice costs its share of that area.
+  const float global_half = 0.5f * region_width_m + config.window_margin_m;
+  const bool young = local_map_ < 0 || static_cast<std::size_t>(local_map_) >= maps.size() ||
+                     maps[static_cast<std::size_t>(local_map_)].scans_inserted < static_cast<std::uint32_t>(back_end.min_scans);
+  // Squares overlap by a match cell.
+  const float overlap = young ? 0.0f : maps[static_cast<std::size_t>(local_map_)].grid->resolution_m() * static_cast<float>(config.coarsen);
+  const float cost = ((half + overlap) * (half + overlap)) / (global_half * global_half);
+  const float budget = static_cast<float>(config.angles_per_step) / static_cast<float>(kSliceAngles);
+  for (float done = 0.0f; phase_ == kCoarse; done += cost) {
+    if (young || cursor_ >= squares) {
+      phase_ = kFine;
+      cursor_ = 0;
+      grid_map_ = -1;
+      return;
+    }
+    if (done >= budget) return;
+    const RegionalMap& map = maps[static_cast<std::size_t>(local_map_)];
+    EnsureGrid(s, map, local_map_, config.coarsen, threshold);
+    const int ix = cursor_ % n, iy = cursor_ / n;
+    const float ox = static_cast<float>(2 * ix + 1 - n) * half, oy = static_cast<float>(2 * iy + 1 - n) * half;
+    const float heading = cw.x - kPi + (2.0f * static_cast<float>(slice_) + 1.0f) * half_slice;
+    // A best pose on a square's border (or on a slice's: the two slices overlap) is the slope of a
+    // peak found inside another square, or of one outside the window: not a candidate.
+    const CorrelativeSearchResult r = CorrelativeSearch(*s.match_grid, CoarseCloud(s),
+                                                        Pose2{c.x + ox, c.y + oy, NormalizeAngle(heading)},
+                                                        half + overlap, half_slice, search, s.rotated);
+    if (r.verdict != Status::kNotEnoughData && !r.on_border) {
+      Candidate k;
+      k.in_map = r.pose;
+      k.coarse = r.score;
+      k.map = local_map_;
+      Offer(s, maps, k, search);
+    }
+    if (++slice_ >= SlicesPerMap(config)) {
+      slice_ = 0;
+      ++cursor_;
+    }
+  }
+}
+
 void GlobalLocaliser::CoarseStep(const BackEndStorage& s, Span<const RegionalMap> maps, float region_width_m,
                                  std::int16_t threshold, const LocalisationConfig& config, const BackEndConfig& back_end) {
+  if (local_tiles_ > 0) {
+    LocalCoarseStep(s, maps, region_width_m, threshold, config, back_end);
+    return;
+  }
   CorrelativeSearchConfig search = back_end.search;
   search.min_angle_step_rad = search.max_angle_step_rad = config.coarse_angle_step_rad;
   // Only each slice's best pose is kept (the fine phase judges ambiguity): prune every block

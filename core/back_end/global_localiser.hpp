@@ -10,7 +10,7 @@
 // No storage of its own: the match grid borrows the regional reference's table
 // (RegistrationReference::LendTable, as the loop-closure search does); the frozen cloud and the
 // candidates live in the back end's cloud buffer and the rotation scratch is the back end's (both
-// idle while the robot is lost: the front end runs no back-end job then). Eight bytes of search
+// idle while the robot is lost: the front end runs no back-end job then). Twelve bytes of search
 // state persist between calls.
 #pragma once
 
@@ -43,6 +43,12 @@ class GlobalLocaliser {
   static constexpr int kCandidates = 6;
   // Back-end cloud entries they take (three points each), at its end.
   static constexpr std::size_t kCandidateEntries = 3 * kCandidates;
+  // Entries just before them: a local round's centre and window (two points) and the held fix
+  // (two points), kept while the frozen cloud of the next round fills the front.
+  static constexpr std::size_t kStateEntries = 4;
+  // A local round's window is searched in squares of at most this half-width (each gives its own
+  // candidates, so that a look-alike inside the window competes with the best pose).
+  static constexpr float kLocalTileHalfM = 0.5f;
   // Points of the frozen cloud the coarse search scores (an even thinning of it): its cost is
   // proportional, and the fine search and PLICP use the whole cloud.
   static constexpr std::size_t kCoarsePoints = 32;
@@ -52,7 +58,19 @@ class GlobalLocaliser {
   // candidates), the rotation scratch and the correspondences.
   // Starts a round with the robot-frame points `hits` (thinned into the frozen cloud).
   void Begin(const BackEndStorage& s, Span<const Point2> hits, const LocalisationConfig& config);
+  // A local round: the same search over map `map` alone, translations within `window_m` of
+  // `centre` (the robot's believed pose at the frozen scan, in the map's frame), every heading
+  // (LocalisationConfig::near_window_m: a robot without a heading sensor lost nearby).
+  void BeginLocal(const BackEndStorage& s, Span<const Point2> hits, const LocalisationConfig& config, int map,
+                  const Pose2& centre, float window_m);
+  // Whether the current (or last) round is a local one.
+  bool local() const { return local_tiles_ > 0; }
   void Cancel() { phase_ = kIdle; }
+  // A fix held until another round agrees with it (LocalisationConfig::clear_min_score): any pose
+  // (the front end's: the submap frame in the world), in the cloud buffer's state entries.
+  void Hold(const BackEndStorage& s, const Pose2& pose);
+  bool Held(const BackEndStorage& s, Pose2* pose) const;
+  void Drop() { held_ = false; }
   // Someone else built the reference whose table the match grid borrows: rebuild it before use.
   void ForgetGrid() { grid_map_ = -1; }
   bool active() const { return phase_ != kIdle; }
@@ -75,6 +93,12 @@ class GlobalLocaliser {
   void EnsureGrid(const BackEndStorage& s, const RegionalMap& map, int index, int coarsen, std::int16_t threshold);
   void CoarseStep(const BackEndStorage& s, Span<const RegionalMap> maps, float region_width_m, std::int16_t threshold,
                   const LocalisationConfig& config, const BackEndConfig& back_end);
+  void LocalCoarseStep(const BackEndStorage& s, Span<const RegionalMap> maps, float region_width_m, std::int16_t threshold,
+                       const LocalisationConfig& config, const BackEndConfig& back_end);
+  // State entry i (0, 1: the local centre and window; 2, 3: the held fix).
+  static Point2* State(const BackEndStorage& s, int i) {
+    return s.cloud.data() + s.cloud.size() - kCandidateEntries - kStateEntries + static_cast<std::size_t>(i);
+  }
   void FineStep(const BackEndStorage& s, Span<const RegionalMap> maps, std::int16_t threshold,
                 const LocalisationConfig& config, const BackEndConfig& back_end);
   void Offer(const BackEndStorage& s, Span<const RegionalMap> maps, const Candidate& c, const CorrelativeSearchConfig& search);
@@ -93,6 +117,9 @@ class GlobalLocaliser {
   std::uint8_t slice_ = 0;      // coarse: the map's next slice of headings
   std::uint8_t candidates_ = 0;
   Phase phase_ = kIdle;
+  std::int16_t local_map_ = -1;
+  std::uint8_t local_tiles_ = 0;  // a local round's squares per side (0: a global round)
+  bool held_ = false;
 };
 
 }  // namespace dpcr

@@ -36,6 +36,22 @@ struct LocalisationConfig {
   // PLICP verification (BackEndConfig::closure_registration, with a stricter inlier ratio: the
   // scan is all inside the map it is found in).
   float min_inlier_ratio = 0.6f;
+  // Without a heading sensor (no wheels, no gyro: the dead-reckoned pose is the constant velocity,
+  // which fades during the rejection streak), a robot lost without a lift may be metres from where
+  // it believes, and the second registration from there converged to whatever minimum was near
+  // (apartment, XV-11 without odometry: fixes 0.5-0.7 m off). Such a robot is first searched for in
+  // the map it was in, within near_window_m + near_window_mps x the time since the streak began of
+  // its believed pose (every heading; the same ambiguity test and verification as the global
+  // search), and globally once that round fails or the window would pass the map's square and
+  // margin. near_window_m 0: off (the second registration's near fix, as with a heading sensor).
+  float near_window_m = 0.3f;
+  float near_window_mps = 0.3f;
+  // Without a heading sensor, a fix scoring below clear_min_score or whose separate second best
+  // scores above clear_max_ratio of it is held until a later round (another scan, carried by the
+  // local tracking) agrees with it within half the search's peak separation; a disagreeing one is
+  // held instead. clear_min_score 0 and clear_max_ratio 1: every verified fix is taken.
+  float clear_min_score = 0.85f;
+  float clear_max_ratio = 0.75f;
 };
 
 }  // namespace dpcr

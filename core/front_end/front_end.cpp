@@ -41,7 +41,9 @@ Status FrontEnd::Init(const MapperConfig& config) {
   lost_in_region_ = false;
   scans_since_closure_try_ = 0;
   localiser_.Cancel();
-  relocalising_ = restart_submap_ = may_be_near_ = false;
+  localiser_.Drop();
+  relocalising_ = restart_submap_ = may_be_near_ = near_failed_ = false;
+  lost_since_us_ = 0;
   return Status::kOk;
 }
 

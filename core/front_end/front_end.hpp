@@ -190,6 +190,12 @@ class FrontEnd {
   void RelocaliseScan(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, ProjectedScan* projected,
                       const Pose2& predicted);
   void StepRelocalisation(std::size_t hits);
+  // Without a heading sensor (LocalisationConfig::near_window_m): the half-width of the local
+  // round's window around the believed pose, 0 when the round is global.
+  float NearWindow() const;
+  // Without a heading sensor (LocalisationConfig::clear_min_score): whether a verified fix is
+  // taken now, clear or agreeing with the held one; else it is held.
+  bool TakeFix(const GlobalFix& fix);
   void ResumeAt(const GlobalFix& fix);
   // Back on the region lattice at the current pose, found in map `found`.
   void Rejoin(int found);
@@ -260,6 +266,7 @@ class FrontEnd {
   bool relocalising_ = false;
   bool restart_submap_ = false;  // the next scan on the floor starts a fresh submap
   bool may_be_near_ = false;     // lost without a lift: the second registration may find it
+  bool near_failed_ = false;     // without a heading sensor: the local round failed, search globally
   std::uint32_t scans_since_closure_try_ = 0;
   float path_at_closure_try_ = 0.0f;
   Pose2 last_scan_in_region_;
@@ -267,6 +274,7 @@ class FrontEnd {
   // with (the submap tracks the robot meanwhile, so the answer carries to the current scan).
   GlobalLocaliser localiser_;
   Pose2 frozen_in_submap_;
+  std::int64_t lost_since_us_ = 0;  // when the trouble began: the rejection streak's first scan
 };
 
 }  // namespace dpcr

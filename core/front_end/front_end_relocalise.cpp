@@ -3,6 +3,8 @@
 // itself (GlobalLocaliser, one bounded step per scan), then resumes in the same world frame.
 #include "core/front_end/front_end.hpp"
 
+#include <cmath>
+
 namespace dpcr {
 
 bool FrontEnd::LostNow() {
@@ -24,8 +26,11 @@ void FrontEnd::StartRelocalisation(bool may_be_near) {
   relocalising_ = true;
   may_be_near_ = may_be_near;
   restart_submap_ = true;  // what the submap holds may be of another place
+  lost_since_us_ = last_stamp_us_ - streak_us_;
+  near_failed_ = false;
   consecutive_rejections_ = consecutive_second_rejections_ = 0;
   localiser_.Cancel();
+  localiser_.Drop();
   // A loop-closure search under way is void: the global search takes its grid (the lent table),
   // and the submap it placed is gone.
   if (back_end_.searching()) back_end_.CancelLoopClosure();
@@ -43,6 +48,7 @@ void FrontEnd::RelocaliseScan(Span<const Beam> beams, const ScanMotion& motion, 
     ++counters_.lifted_scans;
     pose_ = predicted;
     localiser_.Cancel();
+    localiser_.Drop();
     restart_submap_ = true;
     return;
   }
@@ -52,6 +58,7 @@ void FrontEnd::RelocaliseScan(Span<const Beam> beams, const ScanMotion& motion, 
     RestartSubmap(hits);
     restart_submap_ = false;
     localiser_.Cancel();
+    localiser_.Drop();
     StepRelocalisation(hits);
     return;
   }
@@ -61,12 +68,15 @@ void FrontEnd::RelocaliseScan(Span<const Beam> beams, const ScanMotion& motion, 
   hits = projected->hits;  // a re-deskewed scan was projected again
   if (consecutive_rejections_ > 0) {
     localiser_.Cancel();  // the frozen scan's place in the submap is no longer known
+    localiser_.Drop();    // nor the held fix's
     if (consecutive_rejections_ % config_.front_end.submap_restart_after_rejections == 0) RestartSubmap(hits);
     return;
   }
   (void)s_.submap->Add(pose_, Span<const Point2>(s_.hits.data(), hits));
   ++scans_since_submap_lines_;
-  if (may_be_near_ && regions_.current() >= 0 &&
+  // Without a heading sensor the dead-reckoned pose may be far off: the local round instead.
+  const bool near_search = !HeadingMeasured() && config_.localisation.near_window_m > 0.0f;
+  if (may_be_near_ && !near_search && regions_.current() >= 0 &&
       ++scans_since_second_ >= static_cast<std::uint32_t>(config_.front_end.second_registration_period)) {
     // Aligned to the map it was in, where it believes it is: found again without a search.
     const bool aligned = SecondRegistration();
@@ -84,7 +94,14 @@ void FrontEnd::RelocaliseScan(Span<const Beam> beams, const ScanMotion& motion, 
 
 void FrontEnd::StepRelocalisation(std::size_t hits) {
   if (!localiser_.active()) {
-    localiser_.Begin(s_.back_end, Span<const Point2>(s_.hits.data(), hits), config_.localisation);
+    const float window = NearWindow();
+    const int map = regions_.current();
+    if (window > 0.0f) {
+      const Pose2 centre = regions_[map].anchor.Inverse() * pose();
+      localiser_.BeginLocal(s_.back_end, Span<const Point2>(s_.hits.data(), hits), config_.localisation, map, centre, window);
+    } else {
+      localiser_.Begin(s_.back_end, Span<const Point2>(s_.hits.data(), hits), config_.localisation);
+    }
     frozen_in_submap_ = pose_;
   }
   GlobalFix fix;
@@ -92,9 +109,20 @@ void FrontEnd::StepRelocalisation(std::size_t hits) {
                                     config_.front_end.region_reference, config_.localisation, config_.back_end, &fix);
   // The search used the regional reference (its table, then a build).
   InvalidateRegionReference();
-  if (st == Status::kOk) ResumeAt(fix);
+  if (st == Status::kOk && TakeFix(fix)) ResumeAt(fix);
   if (st != Status::kRejected) return;
   ++counters_.relocalisation_failures;
+  if (localiser_.local()) {
+    near_failed_ = true;  // not near, or not for sure: the global search next
+    return;
+  }
+  Pose2 held;
+  if (localiser_.Held(s_.back_end, &held)) {
+    // Without a heading sensor a verified fix is waiting for a second one: one more round before
+    // the fallback below (which would trust the dead-reckoned pose over it).
+    localiser_.Drop();
+    return;
+  }
   if (may_be_near_) {
     // Not carried, and not found anywhere for sure (a symmetric room, a place outside the maps):
     // back to tracking from the dead-reckoned pose, as without the search (the submap restarted;
@@ -102,6 +130,35 @@ void FrontEnd::StepRelocalisation(std::size_t hits) {
     relocalising_ = false;
     InvalidateRegionReference();
   }
+}
+
+float FrontEnd::NearWindow() const {
+  const LocalisationConfig& c = config_.localisation;
+  if (!may_be_near_ || near_failed_ || HeadingMeasured() || !(c.near_window_m > 0.0f) || regions_.current() < 0) return 0.0f;
+  const float lost_s = static_cast<float>(last_stamp_us_ - lost_since_us_) * 1e-6f;
+  const float window = c.near_window_m + c.near_window_mps * (lost_s > 0.0f ? lost_s : 0.0f);
+  // Past the map's square and margin the local round would be the global one's work on one map.
+  return window < 0.5f * config_.front_end.region_width_m + c.window_margin_m ? window : 0.0f;
+}
+
+bool FrontEnd::TakeFix(const GlobalFix& fix) {
+  const LocalisationConfig& c = config_.localisation;
+  if (HeadingMeasured()) return true;
+  if (fix.score >= c.clear_min_score && fix.second_score <= c.clear_max_ratio * fix.score) return true;
+  // Where the robot would be now by this fix and by the held one (each places the submap frame).
+  const Pose2 frame = regions_[fix.map].anchor * fix.in_map * frozen_in_submap_.Inverse();
+  Pose2 held;
+  if (localiser_.Held(s_.back_end, &held)) {
+    const Pose2 apart = Between(held * pose_, frame * pose_);
+    const CorrelativeSearchConfig& sep = config_.back_end.search;
+    if (std::hypot(apart.x, apart.y) < 0.5f * sep.peak_separation_m &&
+        std::fabs(apart.theta) < 0.5f * sep.peak_separation_rad) {
+      localiser_.Drop();
+      return true;
+    }
+  }
+  localiser_.Hold(s_.back_end, frame);
+  return false;
 }
 
 void FrontEnd::ResumeAt(const GlobalFix& fix) {

@@ -217,6 +217,10 @@ std::vector<BadField> BadFields() {
       INT_FIELD(localisation.cloud_points, (std::vector<double>{0.0, -1.0, 9.0, 201.0, 1e9})),
       FLOAT_FIELD(localisation.max_second_ratio, kPositiveRatio),
       FLOAT_FIELD(localisation.min_inlier_ratio, kRatio),
+      FLOAT_FIELD(localisation.near_window_m, kNonNegative),
+      FLOAT_FIELD(localisation.near_window_mps, kNonNegative),
+      FLOAT_FIELD(localisation.clear_min_score, kRatio),
+      FLOAT_FIELD(localisation.clear_max_ratio, kRatio),
   };
   AddPlicp(&t, "front_end.first_registration.", [](dpcr::MapperConfig& c) -> dpcr::PlicpConfig& { return c.front_end.first_registration; });
   AddPlicp(&t, "front_end.second_registration.", [](dpcr::MapperConfig& c) -> dpcr::PlicpConfig& { return c.front_end.second_registration; });
