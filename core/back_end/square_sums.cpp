@@ -29,6 +29,13 @@ T LoadBytes(const std::uint8_t* p) {
   return v;
 }
 
+// The eight bytes of two 32-bit rows (copied, not aliased: the compiler keeps them in a register).
+U8x8 AsBytes(const U32x2& rows) {
+  U8x8 bytes;
+  std::memcpy(&bytes, &rows, sizeof bytes);
+  return bytes;
+}
+
 // A point's 4 x 4 square of adjacent cells (four rows of four bytes), widened to 16-bit lanes
 // eight at a time and spilled into 32-bit sums every 256 points, before a lane could overflow
 // (256 x 255 < 2^16).
@@ -37,8 +44,8 @@ class SquareSums {
   void Add(const std::uint8_t* p, int row_stride) {
     const U32x2 rows01 = {LoadBytes<std::uint32_t>(p), LoadBytes<std::uint32_t>(p + row_stride)};
     const U32x2 rows23 = {LoadBytes<std::uint32_t>(p + 2 * row_stride), LoadBytes<std::uint32_t>(p + 3 * row_stride)};
-    low_ += __builtin_convertvector(reinterpret_cast<const U8x8&>(rows01), U16x8);
-    high_ += __builtin_convertvector(reinterpret_cast<const U8x8&>(rows23), U16x8);
+    low_ += __builtin_convertvector(AsBytes(rows01), U16x8);
+    high_ += __builtin_convertvector(AsBytes(rows23), U16x8);
     if (++pending_ == kSpillEvery) Spill();
   }
   void AddOne(int k, std::uint8_t v) { sums_[k] += v; }
