@@ -121,15 +121,48 @@ void GlobalLocaliser::Offer(const BackEndStorage& s, Span<const RegionalMap> map
   }
 }
 
-void GlobalLocaliser::LocalCoarseStep(const BackEndStorage& s, Span<const RegionalMap> maps, float region_width_m,
-                                      std::int16_t threshold, const LocalisationConfig& config, const BackEndConfig& back_end) {
+CorrelativeSearchConfig GlobalLocaliser::CoarseSearch(const LocalisationConfig& config, const BackEndConfig& back_end) {
   CorrelativeSearchConfig search = back_end.search;
   search.min_angle_step_rad = search.max_angle_step_rad = config.coarse_angle_step_rad;
+  // Only each slice's best pose is kept (the fine phase judges ambiguity): prune every block
+  // that cannot beat it, not the near-best ones the loop-closure search keeps.
   search.max_second_ratio = 1.0f;
+  return search;
+}
+
+void GlobalLocaliser::SearchSlice(const BackEndStorage& s, Span<const RegionalMap> maps, int map, Point2 at,
+                                  float base_heading, float window_m, bool border_rejects, const LocalisationConfig& config,
+                                  const BackEndConfig& back_end) {
+  // The slice's headings around its centre, its translations within window_m of `at`.
+  const float half_slice = 0.5f * static_cast<float>(kSliceAngles) * config.coarse_angle_step_rad;
+  const float centre = base_heading - kPi + (2.0f * static_cast<float>(slice_) + 1.0f) * half_slice;
+  const CorrelativeSearchConfig search = CoarseSearch(config, back_end);
+  const CorrelativeSearchResult r = CorrelativeSearch(*s.match_grid, CoarseCloud(s), Pose2{at.x, at.y, NormalizeAngle(centre)},
+                                                      window_m, half_slice, search, s.rotated);
+  if (r.verdict != Status::kNotEnoughData && !(border_rejects && r.on_border)) {
+    Candidate c;
+    c.in_map = r.pose;
+    c.coarse = r.score;
+    c.map = map;
+    Offer(s, maps, c, search);
+  }
+  if (++slice_ >= SlicesPerMap(config)) {
+    slice_ = 0;
+    ++cursor_;
+  }
+}
+
+void GlobalLocaliser::EndCoarse() {
+  phase_ = kFine;
+  cursor_ = 0;
+  grid_map_ = -1;  // the fine phase builds at its own resolution
+}
+
+void GlobalLocaliser::LocalCoarseStep(const BackEndStorage& s, Span<const RegionalMap> maps, float region_width_m,
+                                      std::int16_t threshold, const LocalisationConfig& config, const BackEndConfig& back_end) {
   const int n = local_tiles_, squares = n * n;
   const Point2 c = *State(s, 0), cw = *State(s, 1);
   const float half = cw.y / static_cast<float>(n);
-  const float half_slice = 0.5f * static_cast<float>(kSliceAngles) * config.coarse_angle_step_rad;
   // The work of a global step (angles_per_step headings over a map's square and margin), counted in
   // squares: a square's slice costs its share of that area.
   const float global_half = 0.5f * region_width_m + config.window_margin_m;
@@ -141,33 +174,16 @@ void GlobalLocaliser::LocalCoarseStep(const BackEndStorage& s, Span<const Region
   const float budget = static_cast<float>(config.angles_per_step) / static_cast<float>(kSliceAngles);
   for (float done = 0.0f; phase_ == kCoarse; done += cost) {
     if (young || cursor_ >= squares) {
-      phase_ = kFine;
-      cursor_ = 0;
-      grid_map_ = -1;
+      EndCoarse();
       return;
     }
     if (done >= budget) return;
-    const RegionalMap& map = maps[static_cast<std::size_t>(local_map_)];
-    EnsureGrid(s, map, local_map_, config.coarsen, threshold);
-    const int ix = cursor_ % n, iy = cursor_ / n;
+    EnsureGrid(s, maps[static_cast<std::size_t>(local_map_)], local_map_, config.coarsen, threshold);
+    const int ix = static_cast<int>(cursor_) % n, iy = static_cast<int>(cursor_) / n;
     const float ox = static_cast<float>(2 * ix + 1 - n) * half, oy = static_cast<float>(2 * iy + 1 - n) * half;
-    const float heading = cw.x - kPi + (2.0f * static_cast<float>(slice_) + 1.0f) * half_slice;
     // A best pose on a square's border (or on a slice's: the two slices overlap) is the slope of a
     // peak found inside another square, or of one outside the window: not a candidate.
-    const CorrelativeSearchResult r = CorrelativeSearch(*s.match_grid, CoarseCloud(s),
-                                                        Pose2{c.x + ox, c.y + oy, NormalizeAngle(heading)},
-                                                        half + overlap, half_slice, search, s.rotated);
-    if (r.verdict != Status::kNotEnoughData && !r.on_border) {
-      Candidate k;
-      k.in_map = r.pose;
-      k.coarse = r.score;
-      k.map = local_map_;
-      Offer(s, maps, k, search);
-    }
-    if (++slice_ >= SlicesPerMap(config)) {
-      slice_ = 0;
-      ++cursor_;
-    }
+    SearchSlice(s, maps, local_map_, Point2{c.x + ox, c.y + oy}, cw.x, half + overlap, true, config, back_end);
   }
 }
 
@@ -177,20 +193,12 @@ void GlobalLocaliser::CoarseStep(const BackEndStorage& s, Span<const RegionalMap
     LocalCoarseStep(s, maps, region_width_m, threshold, config, back_end);
     return;
   }
-  CorrelativeSearchConfig search = back_end.search;
-  search.min_angle_step_rad = search.max_angle_step_rad = config.coarse_angle_step_rad;
-  // Only each slice's best pose is kept (the fine phase judges ambiguity): prune every block
-  // that cannot beat it, not the near-best ones the loop-closure search keeps.
-  search.max_second_ratio = 1.0f;
-  const float half_slice = 0.5f * static_cast<float>(kSliceAngles) * config.coarse_angle_step_rad;
   const float window_m = 0.5f * region_width_m + config.window_margin_m;
   // Up to angles_per_step headings: whole slices, map after map; maps too young to hold a room
   // are skipped.
   for (int done = 0; done < config.angles_per_step && phase_ == kCoarse;) {
     if (cursor_ >= maps.size()) {
-      phase_ = kFine;
-      cursor_ = 0;
-      grid_map_ = -1;  // the fine phase builds at its own resolution
+      EndCoarse();
       return;
     }
     const RegionalMap& map = maps[cursor_];
@@ -198,25 +206,10 @@ void GlobalLocaliser::CoarseStep(const BackEndStorage& s, Span<const RegionalMap
       ++cursor_;
       continue;
     }
-    EnsureGrid(s, map, cursor_, config.coarsen, threshold);
-    // The slice's headings around its centre; its translations over the map's region square and
-    // margin (the anchor is the square's centre).
-    const float centre = -kPi + (2.0f * static_cast<float>(slice_) + 1.0f) * half_slice;
-    const CorrelativeSearchResult r = CorrelativeSearch(*s.match_grid, CoarseCloud(s),
-                                                        Pose2{0.0f, 0.0f, NormalizeAngle(centre)},
-                                                        window_m, half_slice, search, s.rotated);
-    if (r.verdict != Status::kNotEnoughData) {
-      Candidate c;
-      c.in_map = r.pose;
-      c.coarse = r.score;
-      c.map = cursor_;
-      Offer(s, maps, c, search);
-    }
+    EnsureGrid(s, map, static_cast<int>(cursor_), config.coarsen, threshold);
+    // Translations over the map's region square and margin (the anchor is the square's centre).
+    SearchSlice(s, maps, static_cast<int>(cursor_), Point2{0.0f, 0.0f}, 0.0f, window_m, false, config, back_end);
     done += kSliceAngles;
-    if (++slice_ >= SlicesPerMap(config)) {
-      slice_ = 0;
-      ++cursor_;
-    }
   }
 }
 

@@ -93,6 +93,14 @@ class GlobalLocaliser {
   void EnsureGrid(const BackEndStorage& s, const RegionalMap& map, int index, int coarsen, std::int16_t threshold);
   void CoarseStep(const BackEndStorage& s, Span<const RegionalMap> maps, float region_width_m, std::int16_t threshold,
                   const LocalisationConfig& config, const BackEndConfig& back_end);
+  // The coarse phase's search settings; one slice of headings (centred on base_heading + the
+  // slice's place in the turn) over translations within window_m of `at` in map `map`, its best
+  // pose offered as a candidate (not when on the window's border and `border_rejects`), and the
+  // cursor moved on (next slice, or next map or square after the last).
+  static CorrelativeSearchConfig CoarseSearch(const LocalisationConfig& config, const BackEndConfig& back_end);
+  void SearchSlice(const BackEndStorage& s, Span<const RegionalMap> maps, int map, Point2 at, float base_heading, float window_m,
+                   bool border_rejects, const LocalisationConfig& config, const BackEndConfig& back_end);
+  void EndCoarse();
   void LocalCoarseStep(const BackEndStorage& s, Span<const RegionalMap> maps, float region_width_m, std::int16_t threshold,
                        const LocalisationConfig& config, const BackEndConfig& back_end);
   // State entry i (0, 1: the local centre and window; 2, 3: the held fix).

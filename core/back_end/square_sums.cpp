@@ -70,6 +70,23 @@ class SquareSums {
   int pending_ = 0;
   std::uint32_t sums_[16] = {};
 };
+#else
+// The same, byte by byte.
+class SquareSums {
+ public:
+  void Add(const std::uint8_t* p, int row_stride) {
+    for (int j = 0; j < 4; ++j, p += row_stride) {
+      for (int i = 0; i < 4; ++i) sums_[4 * j + i] += p[i];
+    }
+  }
+  void AddOne(int k, std::uint8_t v) { sums_[k] += v; }
+  void Finish(std::uint32_t (&out)[16]) {
+    for (int k = 0; k < 16; ++k) out[k] = sums_[k];
+  }
+
+ private:
+  std::uint32_t sums_[16] = {};
+};
 #endif
 
 // A point whose sixteen look-ups, `step` apart, all fall inside the w x h grid.
@@ -81,7 +98,6 @@ void SumScoreSquares(const MatchGrid& grid, Span<const MatchCell> cells, int x0,
                      std::uint32_t (&out)[16]) {
   const int w = grid.width(), h = grid.height();
   const std::uint8_t* table = grid.cells_data();
-#if DPCR_BYTE_VECTORS
   SquareSums sums;
   for (const MatchCell& c : cells) {
     const int x = c.x + x0, y = c.y + y0;
@@ -94,23 +110,6 @@ void SumScoreSquares(const MatchGrid& grid, Span<const MatchCell> cells, int x0,
     }
   }
   sums.Finish(out);
-#else
-  std::uint32_t sums[16] = {};
-  for (const MatchCell& c : cells) {
-    const int x = c.x + x0, y = c.y + y0;
-    if (all_inside || SquareInside(x, y, 1, w, h)) {
-      const std::uint8_t* p = table + (y * w + x);
-      for (int j = 0; j < 4; ++j, p += w) {
-        for (int i = 0; i < 4; ++i) sums[4 * j + i] += p[i];
-      }
-    } else if (x < w && y < h && x + 3 >= 0 && y + 3 >= 0) {
-      for (int j = 0; j < 4; ++j) {
-        for (int i = 0; i < 4; ++i) sums[4 * j + i] += grid.AtCell(x + i, y + j);
-      }
-    }
-  }
-  for (int k = 0; k < 16; ++k) out[k] = sums[k];
-#endif
 }
 
 void SumBoundSquares(const MatchGrid& grid, Span<const MatchCell> cells, int x0, int y0, bool all_inside,

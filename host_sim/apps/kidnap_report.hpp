@@ -36,6 +36,18 @@ inline FixError ErrorOf(const Recovery& r, const dpcr::Pose2& align) {
                   std::fabs(static_cast<double>(dpcr::NormalizeAngle(r.estimate.theta - truth.theta))) * 180.0 / 3.14159265358979};
 }
 
+// The fixes' errors so far: the worst ones, and how many were farther off than `max_error_m`.
+struct FixTally {
+  double max_error_m = 0.0;
+  int wrong = 0;
+  double worst_m = 0.0, worst_deg = 0.0;
+  void Add(const FixError& err) {
+    if (err.position_m > max_error_m) ++wrong;
+    worst_m = std::max(worst_m, err.position_m);
+    worst_deg = std::max(worst_deg, err.heading_deg);
+  }
+};
+
 inline double Quantile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
@@ -46,9 +58,9 @@ inline double Quantile(std::vector<double> v, double q) {
 // the simulated robot drives on at once). `max_error_m`: a fix farther off counts as wrong.
 inline nlohmann::json KidnapMetrics(const std::vector<dpcr::sim::KidnapEvent>& kidnaps, const std::vector<Recovery>& recoveries,
                                     const dpcr::Pose2& align, double within_s, double max_error_m) {
-  int put_down = 0, recovered = 0, in_time = 0, wrong = 0;
+  int put_down = 0, recovered = 0, in_time = 0;
   std::vector<double> times;
-  double worst_m = 0.0, worst_deg = 0.0;
+  FixTally tally{max_error_m};
   nlohmann::json each = nlohmann::json::array();
   for (std::size_t k = 0; k < kidnaps.size(); ++k) {
     const auto& e = kidnaps[k];
@@ -63,10 +75,8 @@ inline nlohmann::json KidnapMetrics(const std::vector<dpcr::sim::KidnapEvent>& k
       const FixError err = ErrorOf(*it, align);
       ++recovered;
       if (t <= within_s) ++in_time;
-      if (err.position_m > max_error_m) ++wrong;
+      tally.Add(err);
       times.push_back(t);
-      worst_m = std::max(worst_m, err.position_m);
-      worst_deg = std::max(worst_deg, err.heading_deg);
       j["time_to_recover_s"] = t;
       j["error_m"] = err.position_m;
       j["error_deg"] = err.heading_deg;
@@ -79,9 +89,9 @@ inline nlohmann::json KidnapMetrics(const std::vector<dpcr::sim::KidnapEvent>& k
           {"recovered_in_time", in_time},
           {"recovered_in_time_fraction", put_down > 0 ? static_cast<double>(in_time) / put_down : 0.0},
           {"time_to_recover_s", {{"median", Quantile(times, 0.5)}, {"p95", Quantile(times, 0.95)}, {"max", Quantile(times, 1.0)}}},
-          {"max_error_m", worst_m},
-          {"max_error_deg", worst_deg},
-          {"wrong_fixes", wrong},
+          {"max_error_m", tally.worst_m},
+          {"max_error_deg", tally.worst_deg},
+          {"wrong_fixes", tally.wrong},
           {"wrong_fix_threshold_m", max_error_m},
           {"each", each}};
 }
@@ -89,18 +99,15 @@ inline nlohmann::json KidnapMetrics(const std::vector<dpcr::sim::KidnapEvent>& k
 // Every fix of the run, whatever lost the robot (a kidnap, a rejection streak, a slip without
 // odometry): its error, and how many were wrong (farther off than `max_error_m`).
 inline nlohmann::json FixMetrics(const std::vector<Recovery>& recoveries, const dpcr::Pose2& align, double max_error_m) {
-  int wrong = 0;
-  double worst_m = 0.0, worst_deg = 0.0;
+  FixTally tally{max_error_m};
   nlohmann::json each = nlohmann::json::array();
   for (const Recovery& r : recoveries) {
     const FixError err = ErrorOf(r, align);
-    if (err.position_m > max_error_m) ++wrong;
-    worst_m = std::max(worst_m, err.position_m);
-    worst_deg = std::max(worst_deg, err.heading_deg);
+    tally.Add(err);
     each.push_back({{"t_s", static_cast<double>(r.stamp_us) * 1e-6}, {"error_m", err.position_m}, {"error_deg", err.heading_deg}});
   }
-  return {{"fixes", recoveries.size()}, {"wrong_fixes", wrong}, {"wrong_fix_threshold_m", max_error_m},
-          {"max_error_m", worst_m}, {"max_error_deg", worst_deg}, {"each", each}};
+  return {{"fixes", recoveries.size()}, {"wrong_fixes", tally.wrong}, {"wrong_fix_threshold_m", max_error_m},
+          {"max_error_m", tally.worst_m}, {"max_error_deg", tally.worst_deg}, {"each", each}};
 }
 
 // A start at an unknown pose: the first fix after `start_us`.
