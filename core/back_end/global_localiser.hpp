@@ -71,6 +71,7 @@ class GlobalLocaliser {
   void Hold(const BackEndStorage& s, const Pose2& pose);
   bool Held(const BackEndStorage& s, Pose2* pose) const;
   void Drop() { held_ = false; }
+  bool holding() const { return held_; }
   // Someone else built the reference whose table the match grid borrows: rebuild it before use.
   void ForgetGrid() { grid_map_ = -1; }
   bool active() const { return phase_ != kIdle; }

@@ -196,6 +196,8 @@ class FrontEnd {
   // Without a heading sensor (LocalisationConfig::clear_min_score): whether a verified fix is
   // taken now, clear or agreeing with the held one; else it is held.
   bool TakeFix(const GlobalFix& fix);
+  // The submap frame in the world by a fix of the frozen scan.
+  Pose2 SubmapFrameOf(const GlobalFix& fix) const;
   void ResumeAt(const GlobalFix& fix);
   // Back on the region lattice at the current pose, found in map `found`.
   void Rejoin(int found);

@@ -116,8 +116,7 @@ void FrontEnd::StepRelocalisation(std::size_t hits) {
     near_failed_ = true;  // not near, or not for sure: the global search next
     return;
   }
-  Pose2 held;
-  if (localiser_.Held(s_.back_end, &held)) {
+  if (localiser_.holding()) {
     // Without a heading sensor a verified fix is waiting for a second one: one more round before
     // the fallback below (which would trust the dead-reckoned pose over it).
     localiser_.Drop();
@@ -146,7 +145,7 @@ bool FrontEnd::TakeFix(const GlobalFix& fix) {
   if (HeadingMeasured()) return true;
   if (fix.score >= c.clear_min_score && fix.second_score <= c.clear_max_ratio * fix.score) return true;
   // Where the robot would be now by this fix and by the held one (each places the submap frame).
-  const Pose2 frame = regions_[fix.map].anchor * fix.in_map * frozen_in_submap_.Inverse();
+  const Pose2 frame = SubmapFrameOf(fix);
   Pose2 held;
   if (localiser_.Held(s_.back_end, &held)) {
     const Pose2 apart = Between(held * pose_, frame * pose_);
@@ -161,9 +160,13 @@ bool FrontEnd::TakeFix(const GlobalFix& fix) {
   return false;
 }
 
-void FrontEnd::ResumeAt(const GlobalFix& fix) {
+Pose2 FrontEnd::SubmapFrameOf(const GlobalFix& fix) const {
   // The frozen scan was at fix.in_map in the map; the submap frame follows, and the robot in it.
-  submap_pose_ = regions_[fix.map].anchor * fix.in_map * frozen_in_submap_.Inverse();
+  return regions_[fix.map].anchor * fix.in_map * frozen_in_submap_.Inverse();
+}
+
+void FrontEnd::ResumeAt(const GlobalFix& fix) {
+  submap_pose_ = SubmapFrameOf(fix);
   relocalising_ = false;
   ++counters_.relocalisations;
   Rejoin(fix.map);
