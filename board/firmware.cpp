@@ -206,6 +206,17 @@ void Firmware::TryReopenCan(std::int64_t now_us) {
 // pipeline resumes the odometry from where it stopped when they return: the gap's motion is the
 // lidar's, not a jump in the prior).
 void Firmware::WatchWheels(std::int64_t now_us) {
+  // Ticks that come but miss the motion the lidar sees (an IMU's yaw made into ticks, a dead
+  // encoder): said once per switch, as the mapper sets their translation aside or takes it back.
+  const bool ignored = mapper_->wheel_check().translation_ignored();
+  if (ignored != wheel_translation_ignored_) {
+    wheel_translation_ignored_ = ignored;
+    std::fprintf(log_, ignored ? "dpcr-firmware: warning: wheel ticks on CAN %s miss the motion the lidar sees: their translation is ignored%s\n"
+                               : "dpcr-firmware: wheel ticks on CAN %s agree with the lidar again: their translation is used%s\n",
+                 config_.can_interface.c_str(),
+                 ignored && mapper_->wheel_check().heading_used() ? " (their heading is kept)" : "");
+    std::fflush(log_);
+  }
   const std::int64_t last = pipeline_->last_ticks_us();
   const bool fresh = last != INT64_MIN && now_us - last <= config_.wheel_timeout_ms * 1000LL;
   if (fresh && !wheels_up_) {

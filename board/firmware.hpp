@@ -152,6 +152,7 @@ class Firmware {
   bool can_up_ = true;
   bool wheels_up_ = false;        // ticks frames are coming
   bool wheels_ever_ = false;
+  bool wheel_translation_ignored_ = false;  // the mapper's WheelCheck, as last logged
   std::int64_t wheels_lost_us_ = 0;
   std::int64_t start_us_ = 0;
   std::int64_t next_status_us_ = 0;

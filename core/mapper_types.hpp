@@ -59,6 +59,10 @@ struct MapperCounters {
   std::int64_t lost_us = 0;
   std::uint32_t relocalisation_failures = 0;
   std::uint32_t lifted_scans = 0;
+  // Odometry samples whose wheel translation was left out: the wheels missed the motion the lidar
+  // registered, window after window (FrontEnd's WheelCheck: ticks made of an IMU's yaw, a dead
+  // encoder); the front end then predicted like a robot without wheels.
+  std::uint32_t odometry_without_wheel_translation = 0;
 };
 
 }  // namespace dpcr

@@ -19,6 +19,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   counters_ = MapperCounters{};
   fe_counters_ = FrontEndCounters{};
   odometry_.Clear();
+  wheel_check_ = WheelCheck{};
   pose_ = submap_pose_ = last_odom_ = last_motion_ = Pose2::Identity();
   last_motion_us_ = 0;
   have_odom_ = have_scan_ = weak_match_ = have_gyro_yaw_ = false;
@@ -49,7 +50,10 @@ Status FrontEnd::Init(const MapperConfig& config) {
 
 void FrontEnd::AddOdometry(const OdometrySample& sample) {
   const std::uint32_t before = odometry_.steps_back();
-  odometry_.Add(sample);
+  wheel_check_.AddOdometry(sample);
+  const OdometrySample used = wheel_check_.Filter(sample);
+  if (used.has_wheels != sample.has_wheels) ++counters_.odometry_without_wheel_translation;
+  odometry_.Add(used);
   // A stamp stepping back breaks interpolation, not the odometry frame: increments go on.
   if (odometry_.steps_back() != before) ++counters_.odometry_steps_back;
   ++counters_.odometry_samples;
@@ -117,6 +121,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   // map; it tracks locally and searches the maps (front_end_relocalise.cpp).
   if (LostNow()) {
     RelocaliseScan(beams, motion, since_last_us, &projected, predicted);
+    wheel_check_.AddScan(pose(), stamp_us, false);
     last_motion_ = Between(previous, pose_);
     last_motion_us_ = static_cast<std::int32_t>(since_last_us);
     FinishScan(since_last_us);
@@ -124,7 +129,8 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   }
   // 2. First registration against the submap (not for the very first scan: nothing to match).
   bool keep_out = false;
-  if (config_.front_end.enable_registration && s_.submap->size() > 0) {
+  const bool registered = config_.front_end.enable_registration && s_.submap->size() > 0;
+  if (registered) {
     RebuildSubmapReferenceIfDue();
     const bool uncertain = UncertainPrediction(predicted);
     RegisterScan(beams, motion, since_last_us, &projected, predicted);
@@ -132,6 +138,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   } else {
     pose_ = predicted;
   }
+  wheel_check_.AddScan(pose(), stamp_us, registered && consecutive_rejections_ == 0);
   last_motion_ = Between(previous, pose_);
   // In a rejection streak the constant velocity fades (halves each scan): a turn carried on at
   // its last rate long after the robot stopped would spin the pose away (no wheels to say so).
@@ -328,6 +335,7 @@ void FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, st
   bent_ = false;
   if (!motion.wheels() && dt_us > 0 && !beams.empty()) r = RegisterRedeskewed(beams, motion, dt_us, projected, r);
   if (r.verdict != Status::kOk && motion.wheels() && !motion.gyro()) r = RegisterFromConstantVelocity(projected->hits, dt_us, predicted, r);
+  if (r.verdict == Status::kOk && LeapFromGuess(r.pose, predicted, motion)) r.verdict = Status::kRejected;
   ++fe_counters_.first_registrations;
   weak_match_ = r.verdict != Status::kOk || r.inlier_ratio < f.weak_match_inlier_ratio;
   if (r.verdict == Status::kOk) {
@@ -339,6 +347,13 @@ void FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, st
     ++fe_counters_.first_rejected;
     ++consecutive_rejections_;
   }
+}
+
+bool FrontEnd::LeapFromGuess(const Pose2& registered, const Pose2& predicted, const ScanMotion& motion) const {
+  // Only a guess with no wheels behind it, and only while tracking: in a streak the constant
+  // velocity has faded and the registration must be free to catch up.
+  if (PriorXyScale(motion) >= 1.0f || consecutive_rejections_ > 0) return false;
+  return std::hypot(registered.x - predicted.x, registered.y - predicted.y) > kMaxLeapWithoutWheelsM;
 }
 
 RegistrationResult FrontEnd::RegisterRedeskewed(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us,

@@ -23,6 +23,7 @@
 #include "core/front_end/region_tracker.hpp"
 #include "core/front_end/scan_motion.hpp"
 #include "core/front_end/submap.hpp"
+#include "core/front_end/wheel_check.hpp"
 #include "core/geometry/scan.hpp"
 #include "core/geometry/scan_projection.hpp"
 #include "core/grid/scan_marker.hpp"
@@ -80,6 +81,7 @@ class FrontEnd {
   MapperStatus status() const { return status_; }
   const MapperCounters& counters() const { return counters_; }
   const FrontEndCounters& front_end_counters() const { return fe_counters_; }
+  const WheelCheck& wheel_check() const { return wheel_check_; }
   const MapperConfig& config() const { return config_; }
   int region_count() const { return regions_.size(); }
   const RegionalMap& region(int i) const { return regions_[i]; }
@@ -121,7 +123,16 @@ class FrontEnd {
   // give little hold along the way stayed where the guess said, for metres: gyro alone, apartment
   // seeds 4 and 6, 2.2 and 2.4 m LocErr_ave; at 0.1 0.10 and 0.05 m; at 0.02 0.27 and 0.08 m).
   static constexpr float kPriorXyWithoutWheels = 0.1f;
-  static float PriorXyScale(const ScanMotion& motion) { return motion.wheels() ? 1.0f : kPriorXyWithoutWheels; }
+  // Wheels whose translation the WheelCheck doubts count as none.
+  float PriorXyScale(const ScanMotion& motion) const {
+    return motion.wheels() && !wheel_check_.translation_doubted() ? 1.0f : kPriorXyWithoutWheels;
+  }
+  // Without wheels the constant velocity guesses the step; one scan after a tracked one the robot
+  // cannot be this far from it (a vacuum's acceleration changes a 5 Hz step by centimetres), but
+  // the weak prior lets a look-alike (a doorway, a row of chair legs) pull the pose half a metre
+  // along: such a registration is rejected. (Gyro alone, apartment seed 10: 1.7 m in one second.)
+  static constexpr float kMaxLeapWithoutWheelsM = 0.2f;
+  bool LeapFromGuess(const Pose2& registered, const Pose2& predicted, const ScanMotion& motion) const;
   // Without wheels or a gyro the predicted turn is the constant velocity's guess too: a turn that
   // speeds up or slows down is not in it, and at full strength its prior held each step short of
   // the turn (XV-11 at 5 Hz, no odometry: 1-3 deg of heading lost per start or stop of a turn;
@@ -227,6 +238,7 @@ class FrontEnd {
   MapperCounters counters_;
   FrontEndCounters fe_counters_;
   OdometryBuffer odometry_;
+  WheelCheck wheel_check_;  // wheels that miss the motion the lidar sees become a heading source at most
   RegionTracker tracker_;
   RegionSet regions_;
   Pose2 pose_;         // robot in the submap frame

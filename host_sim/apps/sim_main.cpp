@@ -48,7 +48,7 @@ struct Options {
   std::string scan_times;
   std::string heading = "wheels";  // the prediction's heading: wheels, or gyro (FrontEndConfig::gyro_heading)
   std::string lidar = "ld06";      // ld06, or xv11 (sim::Xv11LidarConfig)
-  std::string odometry = "wheels";  // wheels (+ gyro), gyro (no wheel encoders), none
+  std::string odometry = "wheels";  // wheels (+ gyro), gyro (no wheel encoders), heading-ticks, none
   int spins = 0;                    // an in-place spin every this many waypoints (0: none)
   double lidar_min_hz = -1.0;       // the lowest revolution rate (-1: the lidar model's)
   double wheel_clock_ppm = 35.0;    // --emit-device: the wheel board's clock drift (DeviceFilesConfig)
@@ -73,15 +73,29 @@ struct SpinTally {
   }
 };
 
-// The odometry the robot has (--odometry): false when it has none; gyro: the rate alone.
-bool RobotOdometry(const Options& opt, dpcr::OdometrySample* sample) {
-  if (opt.odometry == "none") return false;
-  if (opt.odometry == "gyro") {
-    sample->pose = dpcr::Pose2::Identity();
-    sample->has_wheels = false;
+// The odometry the robot has (--odometry): false when it has none; gyro: the rate alone;
+// heading-ticks: wheel ticks that only turn, by the gyro's integrated yaw (a recorder that turned
+// its IMU's yaw into ticks, as real XV-11 recordings were converted): no translation, no gyro frame.
+struct RobotOdometry {
+  const Options& opt;
+  float imu_yaw = 0.0f;
+  std::int64_t last_us = -1;
+  bool Apply(dpcr::OdometrySample* sample) {
+    if (opt.odometry == "none") return false;
+    if (opt.odometry == "gyro") {
+      sample->pose = dpcr::Pose2::Identity();
+      sample->has_wheels = false;
+    }
+    if (opt.odometry == "heading-ticks") {
+      // The rate is the mean over the interval that ends at the sample (core/front_end/odometry_buffer.hpp).
+      if (last_us >= 0) imu_yaw = dpcr::NormalizeAngle(imu_yaw + sample->gyro_yaw_rate * static_cast<float>(sample->stamp_us - last_us) * 1e-6f);
+      last_us = sample->stamp_us;
+      sample->pose = dpcr::Pose2{0.0f, 0.0f, imu_yaw};
+      sample->has_gyro = false;
+    }
+    return true;
   }
-  return true;
-}
+};
 
 std::unique_ptr<dpcr::DeviceEmitter> MakeEmitter(const Options& opt, const dpcr::MapperConfig& config,
                                                  const dpcr::sim::SimConfig& sim_config) {
@@ -224,9 +238,10 @@ int Run(const Options& opt) {
   const double total_us = opt.minutes * 60e6;
   std::vector<dpcr::apps::Recovery> recoveries;
   std::vector<bool> lost;  // per scan: the status after it was lost
+  RobotOdometry robot_odometry{opt};
   while (sim.Step(&event)) {
     if (event.type == dpcr::sim::SimEventType::kOdometry) {
-      if (!RobotOdometry(opt, &event.odometry)) continue;
+      if (!robot_odometry.Apply(&event.odometry)) continue;
       mapper.AddOdometry(event.odometry);
       if (emitter) emitter->AddOdometry(event.odometry);
       continue;
@@ -321,8 +336,9 @@ int main(int argc, char** argv) {
   app.add_option("--lidar", opt.lidar, "simulated lidar: ld06 (10 Hz, 450 beams, 12 m) or xv11 (5 Hz, 360 at 1 deg, 0.15-6 m, "
                  "invalid and junk readings, spin-up); --emit-device writes its own packets")
       ->check(CLI::IsMember({"ld06", "xv11"}))->capture_default_str();
-  app.add_option("--odometry", opt.odometry, "what the robot has: wheels (+ gyro), gyro (no wheel encoders), none")
-      ->check(CLI::IsMember({"wheels", "gyro", "none"}))->capture_default_str();
+  app.add_option("--odometry", opt.odometry, "what the robot has: wheels (+ gyro), gyro (no wheel encoders), "
+                 "heading-ticks (wheel ticks carrying only the heading, no gyro: an IMU's yaw turned into ticks), none")
+      ->check(CLI::IsMember({"wheels", "gyro", "heading-ticks", "none"}))->capture_default_str();
   app.add_option("--spins", opt.spins, "an in-place spin (360 deg at 120 deg/s) after every N waypoints reached (0: none); "
                  "metrics.json \"spins\" counts the first registrations rejected during them")
       ->check(CLI::NonNegativeNumber)->capture_default_str();

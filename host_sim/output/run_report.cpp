@@ -77,7 +77,15 @@ std::string TrackingSummary(const nlohmann::json& m) {
                 t["lost_seconds"].get<double>(), 100.0 * t["first_rejected_fraction"].get<double>(),
                 t["scans_fused_at_prediction"].get<unsigned>(), t["scans_kept_out_rejected"].get<unsigned>(),
                 t["longest_streak_scans"].get<unsigned>(), t["longest_streak_seconds"].get<double>());
-  return buf;
+  std::string line = buf;
+  const auto& c = m["counters"];
+  const unsigned ignored = c.value("odometry_without_wheel_translation", 0u);
+  if (ignored > 0) {
+    std::snprintf(buf, sizeof buf, "; wheels' translation ignored in %u of %u odometry samples (they missed the motion the lidar saw)",
+                  ignored, c["odometry_samples"].get<unsigned>());
+    line += buf;
+  }
+  return line;
 }
 
 std::string TrackingWarning(const nlohmann::json& m) {

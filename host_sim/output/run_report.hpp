@@ -132,6 +132,7 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
   j["counters"] = {{"scans_without_odometry", c.scans_without_odometry},
                    {"odometry_samples", c.odometry_samples},
                    {"odometry_steps_back", c.odometry_steps_back},
+                   {"odometry_without_wheel_translation", c.odometry_without_wheel_translation},
                    {"beams_invalid", c.beams_invalid},
                    {"regions_created", c.regions_created},
                    {"region_pool_full", c.region_pool_full},
@@ -150,6 +151,11 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                          {"failed_rounds", c.relocalisation_failures}, {"lifted_scans", c.lifted_scans},
                          {"localise_only", mapper.config().localisation.localise_only},
                          {"unknown_start", mapper.config().localisation.unknown_start}};
+  const auto& w = mapper.wheel_check();
+  j["wheels"] = {{"translation_ignored_at_end", w.translation_ignored()},
+                 {"heading_agrees", w.heading_used()},
+                 {"translation_windows_missed", w.translation_misses()},
+                 {"translation_switched_off", w.translation_switched_off()}};
   j["tracking"] = TrackingMetrics(c, mapper.front_end_counters().first_registrations);
   j["tracking_fraction"] = j["tracking"]["tracking_fraction"];
   const auto& f = mapper.front_end_counters();

@@ -15,7 +15,10 @@
 namespace {
 using MapperType = dpcr::Mapper<dpcr::VacuumProfile>;
 
-dpcr::eval::AccuracyResult MapApartment(bool registration, double minutes) {
+// `heading_only_ticks`: the wheel samples carry the integrated gyro's yaw and no translation (ticks
+// made of an IMU's yaw, as real XV-11 recordings were converted), no gyro rate.
+dpcr::eval::AccuracyResult MapApartment(bool registration, double minutes, bool heading_only_ticks = false,
+                                        std::uint32_t* samples_without_translation = nullptr) {
   auto mapper = std::make_unique<MapperType>();
   dpcr::MapperConfig config;
   dpcr::sim::SimConfig sim_config;
@@ -26,8 +29,16 @@ dpcr::eval::AccuracyResult MapApartment(bool registration, double minutes) {
   dpcr::sim::Simulation sim(dpcr::sim::LoadBuiltinWorld("apartment"), sim_config);
   dpcr::sim::SimEvent event;
   dpcr::eval::Trajectory estimate, truth;
+  float yaw = 0.0f;
+  std::int64_t last_us = -1;
   while (sim.Step(&event)) {
     if (event.type == dpcr::sim::SimEventType::kOdometry) {
+      if (heading_only_ticks) {
+        if (last_us >= 0) yaw += event.odometry.gyro_yaw_rate * static_cast<float>(event.odometry.stamp_us - last_us) * 1e-6f;
+        last_us = event.odometry.stamp_us;
+        event.odometry.pose = dpcr::Pose2{0.0f, 0.0f, dpcr::NormalizeAngle(yaw)};
+        event.odometry.has_gyro = false;
+      }
       mapper->AddOdometry(event.odometry);
       continue;
     }
@@ -35,6 +46,7 @@ dpcr::eval::AccuracyResult MapApartment(bool registration, double minutes) {
     estimate.push_back({event.scan.stamp_us, mapper->pose()});
     truth.push_back({event.scan.stamp_us, event.truth.ToPose2()});
   }
+  if (samples_without_translation != nullptr) *samples_without_translation = mapper->counters().odometry_without_wheel_translation;
   return dpcr::eval::EvaluateAgainstGroundTruth(estimate, truth);
 }
 
@@ -48,6 +60,17 @@ TEST_CASE("Apartment, 5 simulated minutes: the front end stays within centimetre
   CHECK(front_end.loc_err_ave_m < 0.06);
   CHECK(front_end.ate_rmse_m < 0.04);
   CHECK(odometry.loc_err_ave_m > 10.0 * front_end.loc_err_ave_m);
+}
+
+TEST_CASE("Apartment, 5 simulated minutes, wheel ticks that carry only the heading: set aside, the run tracks") {
+  // The wheels say "standing still" all along; taken at their word they hold the registration back
+  // at every scan (without the wheel check: 0.043 m here, 0.022 m with it; an XV-11's 10-minute
+  // device replay 2.9 m against 0.031 m).
+  std::uint32_t without_translation = 0;
+  const dpcr::eval::AccuracyResult r = MapApartment(true, 5.0, true, &without_translation);
+  INFO("LocErr_ave " << r.loc_err_ave_m << " m, ATE " << r.ate_rmse_m << " m, samples without translation " << without_translation);
+  CHECK(without_translation > 25000);  // of 30000: switched off within the first seconds
+  CHECK(r.loc_err_ave_m < 0.032);
 }
 
 TEST_CASE("XV-11 without odometry: the turns at the start of a run keep their heading") {

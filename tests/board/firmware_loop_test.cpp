@@ -16,6 +16,7 @@
 #include "board/atomic_file.hpp"
 #include "board/firmware_loop.hpp"
 #include "core/persistence/map_stream.hpp"
+#include "hal/wheel_can_protocol.hpp"
 #include "host_sim/drivers/replay_clock.hpp"
 #include "tests/board/memory_store.hpp"
 #include "tests/board/office_streams.hpp"
@@ -291,6 +292,58 @@ TEST_CASE("firmware loop: wheels silent (frames missing) -> lidar alone, their r
   CHECK(firmware.counters().wheel_silences == 1);
   CHECK(firmware.device_counters().wheel_gaps == 1);
   const dpcr::Pose2 a = firmware.mapper().pose();
+  CHECK(std::hypot(a.x - o.pose.x, a.y - o.pose.y) < 0.10f);
+  CHECK(std::fabs(dpcr::NormalizeAngle(a.theta - o.pose.theta)) < 0.05f);
+}
+
+// The office's ticks frames rewritten to carry the heading alone (each wheel's count replaced by
+// half the difference of the two, opposite signs): what a recorder that turned its IMU's yaw into
+// ticks sends. The gyro frames are dropped with them.
+std::vector<dpcr::CandumpRecord> HeadingOnlyTicks(const std::vector<dpcr::CandumpRecord>& records) {
+  std::vector<dpcr::CandumpRecord> out;
+  std::int64_t left = 0, right = 0;
+  std::uint16_t last_left = 0, last_right = 0;
+  bool first = true;
+  for (dpcr::CandumpRecord r : records) {
+    if (r.frame.id == dpcr::kGyroCanId) continue;
+    if (r.frame.id == dpcr::kWheelTicksCanId) {
+      const auto u16 = [&r](int at) { return static_cast<std::uint16_t>(r.frame.data[at] | (r.frame.data[at + 1] << 8)); };
+      const std::uint16_t l = u16(0), rt = u16(2);
+      if (!first) {
+        left += static_cast<std::int16_t>(static_cast<std::uint16_t>(l - last_left));
+        right += static_cast<std::int16_t>(static_cast<std::uint16_t>(rt - last_right));
+      }
+      first = false;
+      last_left = l;
+      last_right = rt;
+      const auto put = [&r](int at, std::int64_t v) {
+        const std::uint16_t w = static_cast<std::uint16_t>(v & 0xFFFF);
+        r.frame.data[at] = static_cast<std::uint8_t>(w & 0xFF);
+        r.frame.data[at + 1] = static_cast<std::uint8_t>(w >> 8);
+      };
+      put(0, (left - right) / 2);
+      put(2, (right - left) / 2);
+    }
+    out.push_back(r);
+  }
+  return out;
+}
+
+TEST_CASE("firmware loop: ticks that carry only the heading are noticed, their translation ignored, said in the log") {
+  const OfficeStreams& o = dpcr::test::Office15s();
+  LoopRun run(o, HeadingOnlyTicks(o.records));
+  MemoryStore store;
+  std::FILE* log = std::tmpfile();
+  dpcr::board::Firmware firmware(ConfigFor(o), dpcr::board::FirmwarePorts{&run.uart, &run.can, &run.clock, &store, nullptr}, log);
+  REQUIRE(firmware.Start());
+  const std::string text = RunToEnd(&firmware, &run, o, log);
+  INFO(text);
+  CHECK(text.find("wheel ticks on CAN can0 miss the motion the lidar sees: their translation is ignored (their heading is kept)") !=
+        std::string::npos);
+  CHECK(firmware.mapper().counters().odometry_without_wheel_translation > 0);
+  // The robot ends where the run with its true wheels does.
+  const dpcr::Pose2 a = firmware.mapper().pose();
+  INFO("end " << a.x << " " << a.y << " " << a.theta << ", with true wheels " << o.pose.x << " " << o.pose.y << " " << o.pose.theta);
   CHECK(std::hypot(a.x - o.pose.x, a.y - o.pose.y) < 0.10f);
   CHECK(std::fabs(dpcr::NormalizeAngle(a.theta - o.pose.theta)) < 0.05f);
 }

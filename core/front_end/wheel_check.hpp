@@ -1,0 +1,92 @@
+// Do the wheels measure what the lidar sees the robot do? A recorder that turned its IMU's yaw
+// into wheel ticks (real XV-11 recordings were converted so), a dead encoder, or a wheel board
+// that sends counters that never move: the odometry then says "standing still" while the robot
+// drives, the translation prior holds every registration back, and the run drifts by metres with
+// every scan "tracked". This check compares the wheels' net motion with the registered one over
+// windows of clear motion and, when the wheels miss most of it window after window, makes the
+// front end treat them as a heading source at most (the gyro-only mode: translation from the
+// constant velocity), or as nothing when they miss the turns too. Wheels that agree again are
+// taken back. Real wheels agree within slip (a few per cent): the thresholds leave a wide margin.
+#pragma once
+#include <cstdint>
+#include "core/front_end/odometry.hpp"
+#include "core/geometry/pose2.hpp"
+
+namespace dpcr {
+
+class WheelCheck {
+ public:
+  // Every odometry sample as it arrives, before Filter.
+  void AddOdometry(const OdometrySample& sample);
+  // After each scan: `tracked` when its first registration was accepted and the robot was not
+  // lost (only then does `pose`, in any fixed frame, say where the robot went).
+  void AddScan(const Pose2& pose, std::int64_t stamp_us, bool tracked);
+  // The sample the front end should use: unchanged while the wheels are trusted; otherwise a
+  // sample without wheels whose yaw rate is the wheels' heading change (when the wheels see the
+  // turns and no gyro rate came with it).
+  OdometrySample Filter(const OdometrySample& sample) const;
+
+  bool translation_ignored() const { return translation_.rejected; }
+  // Ignored, or, while no window has yet shown the wheels right, on the way there: a window
+  // already missed, or the open one missing so far (from kDoubtDistanceM on). The registration
+  // then leans on the wheels' translation as little as on a guess, so that the scans before the
+  // switch, which build the first map, are not held back. Wheels once seen right are not
+  // doubted for a stall (a logger's repeated pose) until they are switched off.
+  bool translation_doubted() const {
+    return translation_.rejected || (!translation_confirmed_ && (translation_.run > 0 || window_doubt_));
+  }
+  // The wheels' heading is presumed good until turns show otherwise (ticks made of an IMU's yaw
+  // are good from the first sample; a dead encoder is found after kVotesToSwitch turns).
+  bool heading_used() const { return !heading_.rejected; }
+  // Windows in which the wheels missed most of the registered translation, and times the check
+  // switched the wheels' translation off.
+  std::uint32_t translation_misses() const { return translation_misses_; }
+  std::uint32_t translation_switched_off() const { return switched_off_; }
+
+  // A translation window closes once the robot has moved this far (net, as registered); a
+  // heading window once it has turned this much. Windows that take longer are restarted.
+  static constexpr float kWindowDistanceM = 0.3f;
+  static constexpr float kWindowTurnRad = 0.5f;
+  static constexpr float kDoubtDistanceM = 0.1f;
+  static constexpr std::int64_t kWindowMaxUs = 10000000;
+  // Wheels that show less than this share of the registered motion missed it; at least kAgree agree.
+  static constexpr float kMissRatio = 0.25f;
+  static constexpr float kAgreeRatio = 0.5f;
+  // Consecutive windows that switch the wheels' translation (heading) off, or back on.
+  static constexpr int kVotesToSwitch = 3;
+
+ private:
+  // Consecutive votes of one quantity: `rejected` flips after kVotesToSwitch in a row.
+  struct Verdict {
+    bool rejected = false;
+    std::uint8_t run = 0;  // consecutive votes against the current state
+    bool Vote(bool agrees);  // true when the state flipped
+  };
+  void RestartWindows(const Pose2& pose, std::int64_t stamp_us);
+
+  // (Ordered by size: the vacuum profile's static RAM is counted to the byte.)
+  std::int64_t wheel_stamp_us_ = 0;
+  // The open windows: when they started.
+  std::int64_t translation_start_us_ = 0;
+  std::int64_t turn_start_us_ = 0;
+  Pose2 wheel_pose_;              // the newest wheel pose received
+  float wheel_turn_rate_ = 0.0f;  // rad/s between the two newest wheel samples
+  // Where the translation window started (registered and wheel positions); the last headings
+  // and the signed turns summed since the turn window started.
+  Point2 start_xy_;
+  Point2 start_wheels_xy_;
+  float previous_theta_ = 0.0f;
+  float previous_wheels_theta_ = 0.0f;
+  float turned_ = 0.0f;
+  float wheels_turned_ = 0.0f;
+  std::uint32_t translation_misses_ = 0;
+  std::uint32_t switched_off_ = 0;
+  Verdict translation_;
+  Verdict heading_;
+  bool have_wheels_ = false;
+  bool window_open_ = false;
+  bool window_doubt_ = false;
+  bool translation_confirmed_ = false;  // a window has shown the wheels' translation right
+};
+
+}  // namespace dpcr
