@@ -3,6 +3,7 @@
 // and the submap restarts so that tracking can come back.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <random>
@@ -157,4 +158,33 @@ TEST_CASE("A sparse first revolution (a spin-up) does not start the submap, the 
   r.Odometry(later.stamp_us);
   (void)r.m->AddScan(later);
   CHECK(r.m->counters().scans_too_sparse == 1);
+}
+
+TEST_CASE("Without wheels a registration that leaps from the constant velocity's guess is rejected once, then caught up") {
+  // FrontEnd::kMaxLeapWithoutWheelsM: one scan after a tracked one the robot cannot be 0.35 m from
+  // where its velocity says. (A look-alike would pull the pose so; here the robot truly jumps, so
+  // that the next scan, in the streak where the gate is off, shows the registration free again.)
+  dpcr::MapperConfig config;
+  config.localisation.relocalise = false;
+  auto m = std::make_unique<M>();
+  REQUIRE(m->Init(config) == dpcr::Status::kOk);
+  const dpcr::test::SyntheticRun<M> run(8.0f, 60, 450);  // 2.5 cm per scan along x
+  for (int i = 0; i < 20; ++i) (void)m->AddScan(run.scans[static_cast<std::size_t>(i)]);
+  REQUIRE(m->front_end_counters().first_rejected == 0);
+  const dpcr::Pose2 before = m->pose();
+  // The scan seen 14 scans further on (0.35 m), stamped as the next one.
+  M::ScanType leap = run.scans[34];
+  leap.stamp_us = run.scans[20].stamp_us;
+  (void)m->AddScan(leap);
+  CHECK(m->front_end_counters().first_rejected == 1);
+  CHECK(std::hypot(m->pose().x - before.x, m->pose().y - before.y) < 0.1f);
+  // The next one (15 scans on), in the streak: registered where it is.
+  M::ScanType next = run.scans[35];
+  next.stamp_us = run.scans[21].stamp_us;
+  (void)m->AddScan(next);
+  CHECK(m->front_end_counters().first_rejected == 1);
+  const dpcr::Pose2 start = run.Sample(0.095f, 0.25f, 8.0f).pose;  // the map's frame is the first scan's pose
+  const dpcr::Pose2 truth = run.Sample(3.595f, 0.25f, 8.0f).pose;
+  INFO("pose " << m->pose().x << " " << m->pose().y << ", truth " << truth.x - start.x << " " << truth.y - start.y);
+  CHECK(std::hypot(m->pose().x - (truth.x - start.x), m->pose().y - (truth.y - start.y)) < 0.03f);
 }
