@@ -121,7 +121,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   // map; it tracks locally and searches the maps (front_end_relocalise.cpp).
   if (LostNow()) {
     RelocaliseScan(beams, motion, since_last_us, &projected, predicted);
-    wheel_check_.AddScan(pose(), stamp_us, false);
+    wheel_check_.AddScan(pose(), Pose2::Identity(), stamp_us, false);
     last_motion_ = Between(previous, pose_);
     last_motion_us_ = static_cast<std::int32_t>(since_last_us);
     FinishScan(since_last_us);
@@ -138,7 +138,8 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   } else {
     pose_ = predicted;
   }
-  wheel_check_.AddScan(pose(), stamp_us, registered && consecutive_rejections_ == 0);
+  wheel_check_.AddScan(pose(), odometry_.empty() ? Pose2::Identity() : odometry_.PoseAt(stamp_us), stamp_us,
+                       registered && consecutive_rejections_ == 0);
   last_motion_ = Between(previous, pose_);
   // In a rejection streak the constant velocity fades (halves each scan): a turn carried on at
   // its last rate long after the robot stopped would spin the pose away (no wheels to say so).

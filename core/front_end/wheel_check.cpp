@@ -17,13 +17,17 @@ bool WheelCheck::Verdict::Vote(bool agrees) {
 }
 
 void WheelCheck::AddOdometry(const OdometrySample& sample) {
-  if (!sample.has_wheels) return;
+  if (!sample.has_wheels) {
+    // Wheels gone silent (a gyro-only sample): nothing to compare until they are back.
+    have_wheels_ = window_open_ = false;
+    return;
+  }
   // Below a millisecond apart (logs that jitter, a stamp stepping back) the rate is kept.
   const std::int64_t dt_us = sample.stamp_us - wheel_stamp_us_;
   if (have_wheels_ && dt_us >= 1000) {
-    wheel_turn_rate_ = NormalizeAngle(sample.pose.theta - wheel_pose_.theta) / (static_cast<float>(dt_us) * 1e-6f);
+    wheel_turn_rate_ = NormalizeAngle(sample.pose.theta - wheel_theta_) / (static_cast<float>(dt_us) * 1e-6f);
   }
-  wheel_pose_ = sample.pose;
+  wheel_theta_ = sample.pose.theta;
   wheel_stamp_us_ = sample.stamp_us;
   have_wheels_ = true;
 }
@@ -32,59 +36,82 @@ OdometrySample WheelCheck::Filter(const OdometrySample& sample) const {
   if (!sample.has_wheels || !translation_.rejected) return sample;
   OdometrySample s = sample;
   s.has_wheels = false;
-  s.pose = Pose2::Identity();  // a sample without wheels carries a constant pose
+  // Its pose stays: unused without wheels (FrontEnd::Predict, ScanMotion), it gives the check the
+  // wheels' pose at each scan's stamp (OdometryBuffer::PoseAt) while they are set aside.
   if (!s.has_gyro && heading_used()) {
     s.has_gyro = true;
-    s.gyro_yaw_rate = wheel_turn_rate_;
+    // Only a clear scale error is corrected: near 1 the estimate's own noise would cost more.
+    const float k = heading_scale();
+    s.gyro_yaw_rate = wheel_turn_rate_ * (std::fabs(k - 1.0f) > kScaleDeadBand ? k : 1.0f);
   }
   return s;
 }
 
-void WheelCheck::RestartWindows(const Pose2& pose, std::int64_t stamp_us) {
+float WheelCheck::heading_scale() const {
+  if (scale_wheels_rad_ < kMinScaleEvidenceRad) return 1.0f;
+  const float k = scale_registered_rad_ / scale_wheels_rad_;
+  return k < kAgreeRatio ? kAgreeRatio : (k > 1.0f / kAgreeRatio ? 1.0f / kAgreeRatio : k);
+}
+
+void WheelCheck::RestartWindows(const Pose2& pose, const Pose2& wheels, std::int64_t stamp_us) {
   start_xy_ = Point2{pose.x, pose.y};
-  start_wheels_xy_ = Point2{wheel_pose_.x, wheel_pose_.y};
+  start_wheels_xy_ = Point2{wheels.x, wheels.y};
   previous_theta_ = pose.theta;
-  previous_wheels_theta_ = wheel_pose_.theta;
+  previous_wheels_theta_ = wheels.theta;
   translation_start_us_ = turn_start_us_ = stamp_us;
   turned_ = wheels_turned_ = 0.0f;
   window_open_ = true;
 }
 
-void WheelCheck::AddScan(const Pose2& pose, std::int64_t stamp_us, bool tracked) {
+void WheelCheck::AddScan(const Pose2& pose, const Pose2& wheels, std::int64_t stamp_us, bool tracked) {
   if (!have_wheels_ || !tracked) {
-    window_open_ = window_doubt_ = false;  // an untracked scan says nothing of where the robot went
+    // An untracked scan says nothing of where the robot went.
+    window_open_ = wheels_short_ = false;
     return;
   }
   if (!window_open_) {
-    RestartWindows(pose, stamp_us);
+    RestartWindows(pose, wheels, stamp_us);
     return;
   }
-  // Translation: net distances, so that a standing robot's jitter adds up to nothing.
+  CheckTranslation(pose, wheels, stamp_us);
+  CheckHeading(pose, wheels, stamp_us);
+}
+
+void WheelCheck::CheckTranslation(const Pose2& pose, const Pose2& wheels, std::int64_t stamp_us) {
+  // Net distances, so that a standing robot's jitter adds up to nothing. The window closes once
+  // either has gone kWindowDistanceM: the lidar (wheels that stand still or turn only) or the
+  // wheels (a robot stuck on a rug's edge whose wheels spin on).
   const float moved = std::hypot(pose.x - start_xy_.x, pose.y - start_xy_.y);
-  const float ratio = moved > 0.0f ? std::hypot(wheel_pose_.x - start_wheels_xy_.x, wheel_pose_.y - start_wheels_xy_.y) / moved : 1.0f;
-  window_doubt_ = moved >= kDoubtDistanceM && ratio < kMissRatio;
-  if (moved >= kWindowDistanceM) {
-    if (ratio < kMissRatio) ++translation_misses_;
-    if (ratio >= kAgreeRatio) translation_confirmed_ = true;
-    if (ratio < kMissRatio || ratio >= kAgreeRatio) {
-      if (translation_.Vote(ratio >= kAgreeRatio) && translation_.rejected) ++switched_off_;
-    }
+  const float wheeled = std::hypot(wheels.x - start_wheels_xy_.x, wheels.y - start_wheels_xy_.y);
+  wheels_short_ = moved >= kDoubtDistanceM && wheeled < kMissRatio * moved;
+  const float longer = std::fmax(moved, wheeled), shorter = std::fmin(moved, wheeled);
+  if (longer >= kWindowDistanceM) {
+    const bool miss = shorter < kMissRatio * longer, agree = shorter >= kAgreeRatio * longer;
+    if (miss) ++translation_misses_;
+    if (agree) translation_confirmed_ = true;
+    if ((miss || agree) && translation_.Vote(agree) && translation_.rejected) ++switched_off_;
   }
-  if (moved >= kWindowDistanceM || stamp_us - translation_start_us_ > kWindowMaxUs) {
+  if (longer >= kWindowDistanceM || stamp_us - translation_start_us_ > kWindowMaxUs) {
     start_xy_ = Point2{pose.x, pose.y};
-    start_wheels_xy_ = Point2{wheel_pose_.x, wheel_pose_.y};
+    start_wheels_xy_ = Point2{wheels.x, wheels.y};
     translation_start_us_ = stamp_us;
-    window_doubt_ = false;
+    wheels_short_ = false;
   }
-  // Heading: signed turns summed scan by scan (a net angle would wrap).
+}
+
+void WheelCheck::CheckHeading(const Pose2& pose, const Pose2& wheels, std::int64_t stamp_us) {
+  // Signed turns summed scan by scan (a net angle would wrap).
   turned_ += NormalizeAngle(pose.theta - previous_theta_);
-  wheels_turned_ += NormalizeAngle(wheel_pose_.theta - previous_wheels_theta_);
+  wheels_turned_ += NormalizeAngle(wheels.theta - previous_wheels_theta_);
   previous_theta_ = pose.theta;
-  previous_wheels_theta_ = wheel_pose_.theta;
+  previous_wheels_theta_ = wheels.theta;
   if (std::fabs(turned_) >= kWindowTurnRad) {
     const float turn_ratio = wheels_turned_ / turned_;  // negative: the wheels turn the other way
-    if (turn_ratio < kMissRatio || (turn_ratio >= kAgreeRatio && turn_ratio <= 1.0f / kAgreeRatio)) {
-      (void)heading_.Vote(turn_ratio >= kAgreeRatio);
+    const bool agree = turn_ratio >= kAgreeRatio && turn_ratio <= 1.0f / kAgreeRatio;
+    if (turn_ratio < kMissRatio || agree) (void)heading_.Vote(agree);
+    if (agree) {
+      scale_registered_rad_ = kScaleMemory * scale_registered_rad_ + std::fabs(turned_);
+      scale_wheels_rad_ = kScaleMemory * scale_wheels_rad_ + std::fabs(wheels_turned_);
     }
   }
   if (std::fabs(turned_) >= kWindowTurnRad || stamp_us - turn_start_us_ > kWindowMaxUs) {

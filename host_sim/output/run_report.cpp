@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -83,6 +84,12 @@ std::string TrackingSummary(const nlohmann::json& m) {
   if (ignored > 0) {
     std::snprintf(buf, sizeof buf, "; wheels' translation ignored in %u of %u odometry samples (they missed the motion the lidar saw)",
                   ignored, c["odometry_samples"].get<unsigned>());
+    line += buf;
+  }
+  // A turn scale far from 1: the wheel geometry given (track width) is not the robot's.
+  const double scale = m.contains("wheels") ? m["wheels"].value("heading_scale", 1.0) : 1.0;
+  if (std::fabs(scale - 1.0) > 0.05) {
+    std::snprintf(buf, sizeof buf, "; the lidar turns %.2f x what the wheels say (check the track width)", scale);
     line += buf;
   }
   return line;

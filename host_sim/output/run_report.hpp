@@ -155,7 +155,8 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
   j["wheels"] = {{"translation_ignored_at_end", w.translation_ignored()},
                  {"heading_agrees", w.heading_used()},
                  {"translation_windows_missed", w.translation_misses()},
-                 {"translation_switched_off", w.translation_switched_off()}};
+                 {"translation_switched_off", w.translation_switched_off()},
+                 {"heading_scale", w.heading_scale()}};
   j["tracking"] = TrackingMetrics(c, mapper.front_end_counters().first_registrations);
   j["tracking_fraction"] = j["tracking"]["tracking_fraction"];
   const auto& f = mapper.front_end_counters();

@@ -34,7 +34,7 @@ Pose2 Drive(WheelCheck* check, Wheels wheels, float seconds, Pose2 start = Pose2
       p = p * Pose2{0.0025f, 0.0f, 0.003f};
       check->AddOdometry(WheelSample(t0_us + (i - 1) * 100000 + k * 10000, p, wheels));
     }
-    check->AddScan(p, t0_us + i * 100000, true);
+    check->AddScan(p, WheelSample(0, p, wheels).pose, t0_us + i * 100000, true);
   }
   return p;
 }
@@ -70,8 +70,7 @@ TEST_CASE("WheelCheck: ticks that carry only the heading become a heading source
   CHECK_FALSE(out.has_wheels);
   CHECK(out.has_gyro);
   CHECK(out.gyro_yaw_rate == Approx(0.5f).epsilon(0.01));
-  CHECK(out.pose.x == 0.0f);
-  CHECK(out.pose.theta == 0.0f);
+  CHECK(out.pose.theta == 1.005f);  // kept: the check reads the wheels' pose back from the buffer
 }
 
 TEST_CASE("WheelCheck: a real gyro's rate is kept when the wheels' translation is set aside") {
@@ -111,7 +110,7 @@ TEST_CASE("WheelCheck: a standing robot's jitter and untracked scans never switc
   for (int i = 1; i <= 6000; ++i) {
     check.AddOdometry(WheelSample(i * 100000 - 50000, Pose2::Identity(), Wheels::kTrue));
     const float j = (i % 2 == 0 ? 0.01f : -0.01f);
-    check.AddScan(Pose2{j, -j, 0.5f * j}, i * 100000, true);
+    check.AddScan(Pose2{j, -j, 0.5f * j}, Pose2::Identity(), i * 100000, true);
   }
   CHECK(check.translation_misses() == 0);
   // A robot carried 1 m while lost (its scans untracked), over and over: the wheels standing
@@ -119,11 +118,28 @@ TEST_CASE("WheelCheck: a standing robot's jitter and untracked scans never switc
   Pose2 p = Pose2::Identity();
   for (int k = 0; k < 10; ++k) {
     const std::int64_t t = 700000000 + k * 2000000;
-    check.AddScan(p, t, true);
+    check.AddScan(p, Pose2::Identity(), t, true);
     p = p * Pose2{1.0f, 0.0f, 0.0f};
-    check.AddScan(p, t + 100000, false);
-    check.AddScan(p, t + 200000, true);
+    check.AddScan(p, Pose2::Identity(), t + 100000, false);
+    check.AddScan(p, Pose2::Identity(), t + 200000, true);
   }
   CHECK(check.translation_misses() == 0);
   CHECK_FALSE(check.translation_ignored());
+}
+
+TEST_CASE("WheelCheck: wheels that spin on while the lidar sees the robot stand are set aside") {
+  WheelCheck check;
+  Pose2 p = Drive(&check, Wheels::kTrue, 5.0f);
+  REQUIRE_FALSE(check.translation_doubted());
+  // Stuck: the wheels drive on at 0.25 m/s, every scan registers the same pose.
+  Pose2 wheels = p;
+  for (int i = 1; i <= 60 && !check.translation_ignored(); ++i) {
+    for (int k = 1; k <= 10; ++k) {
+      wheels = wheels * Pose2{0.0025f, 0.0f, 0.0f};
+      check.AddOdometry(WheelSample(5000000 + (i - 1) * 100000 + k * 10000, wheels, Wheels::kTrue));
+    }
+    check.AddScan(p, wheels, 5000000 + i * 100000, true);
+  }
+  CHECK(check.translation_ignored());
+  CHECK(check.translation_misses() == 3);
 }
