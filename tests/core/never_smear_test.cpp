@@ -188,3 +188,36 @@ TEST_CASE("Without wheels a registration that leaps from the constant velocity's
   INFO("pose " << m->pose().x << " " << m->pose().y << ", truth " << truth.x - start.x << " " << truth.y - start.y);
   CHECK(std::hypot(m->pose().x - (truth.x - start.x), m->pose().y - (truth.y - start.y)) < 0.03f);
 }
+
+TEST_CASE("Without wheels a registration faster than a vacuum drives is rejected") {
+  // FrontEnd::kMaxSpeedWithoutWheelsMps (with a heading sensor): a run of registrations that each
+  // agree with the constant velocity can still race away where the walls give no hold along the
+  // way; past the speed no vacuum drives, the registration is not taken.
+  dpcr::MapperConfig config;
+  config.localisation.relocalise = false;
+  auto m = std::make_unique<M>();
+  REQUIRE(m->Init(config) == dpcr::Status::kOk);
+  const dpcr::test::SyntheticRun<M> run(8.0f, 60, 450);  // 2.5 cm per scan along x (0.25 m/s)
+  std::int64_t gyro_us = run.scans[0].stamp_us - 100000;
+  const auto gyro_until = [&](std::int64_t t_us) {  // a gyro alone, the robot not turning
+    for (; gyro_us <= t_us; gyro_us += 10000) {
+      dpcr::OdometrySample s;
+      s.stamp_us = gyro_us;
+      s.has_wheels = false;
+      s.has_gyro = true;
+      m->AddOdometry(s);
+    }
+  };
+  for (int i = 0; i < 20; ++i) {
+    gyro_until(run.scans[static_cast<std::size_t>(i)].stamp_us);
+    (void)m->AddScan(run.scans[static_cast<std::size_t>(i)]);
+  }
+  REQUIRE(m->front_end_counters().first_rejected == 0);
+  // The scan seen 3 scans further on, stamped as the next one: 0.075 m in 0.1 s, within the
+  // leap allowed from the guess (0.05 m off it) but 0.75 m/s.
+  M::ScanType fast = run.scans[22];
+  fast.stamp_us = run.scans[20].stamp_us;
+  gyro_until(fast.stamp_us);
+  (void)m->AddScan(fast);
+  CHECK(m->front_end_counters().first_rejected == 1);
+}
