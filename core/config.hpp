@@ -159,6 +159,11 @@ struct FrontEndConfig {
   float redeskew_min_m = 0.01f;
   float redeskew_min_rad = 0.01f;
   // At twice these, the scan is registered but kept out of the maps (FrontEnd::KeepOutBent).
+  // Without wheels or a gyro, each scan goes into the maps one revolution late, de-skewed again
+  // with the motion over its own revolution once the next scan's registration has measured it,
+  // and registered again (FrontEnd::FlushPendingScan). The de-skew otherwise assumes the motion of
+  // the revolution before, one revolution late at every start and stop of a turn.
+  bool lidar_only_fixed_lag = true;
   bool search_on_rejection = true;
   float search_turn_rad = 0.0f;
   PoseSearchConfig search;

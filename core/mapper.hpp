@@ -169,7 +169,8 @@ class Mapper {
     s.hits = Span<Point2>(hits_, Profile::kMaxBeams);
     s.free_ends = Span<Point2>(free_ends_, Profile::kMaxBeams);
     s.target = Span<Point2>(target_, kSecondTargetPoints);
-    s.scratch = Span<CellIndex>(scratch_, Profile::kMaxBeams);
+    s.scratch = submap_.ray_scratch();  // the submap's and the regional maps' insertions never overlap
+    s.pending_beams = Span<PackedBeam>(pending_beams_, Profile::kMaxBeams);
     s.correspondences = Span<Correspondence>(correspondences_, Profile::kMaxBeams);
     s.back_end.graph = &graph_;
     s.back_end.match_grid = &match_grid_;
@@ -200,7 +201,9 @@ class Mapper {
   Point2 hits_[Profile::kMaxBeams];
   Point2 free_ends_[Profile::kMaxBeams];
   Point2 target_[kSecondTargetPoints];
-  CellIndex scratch_[Profile::kMaxBeams];
+  // The scan waiting one revolution for its de-skew (lidar alone: FrontEnd::FlushPendingScan),
+  // packed; in the room of the ray-casting scratch the regional maps now share with the submap.
+  PackedBeam pending_beams_[Profile::kMaxBeams];
   // Registration scratch for a scan's points (the second registration's larger target goes without).
   Correspondence correspondences_[Profile::kMaxBeams];
   // The back end: the region graph, the loop-closure search grid, a region's cloud, its job queue.

@@ -45,6 +45,8 @@ Status FrontEnd::Init(const MapperConfig& config) {
   localiser_.Drop();
   relocalising_ = restart_submap_ = may_be_near_ = near_failed_ = false;
   lost_since_us_ = 0;
+  pending_ = PendingScan{};
+  bent_against_single_ = false;
   return Status::kOk;
 }
 
@@ -120,6 +122,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   // 0. Lost (wheels lifted, a long rejection streak, an unknown start): the scan goes into no
   // map; it tracks locally and searches the maps (front_end_relocalise.cpp).
   if (LostNow()) {
+    pending_.active = false;  // a lost robot maps nothing: the waiting scan is dropped
     RelocaliseScan(beams, motion, since_last_us, &projected, predicted);
     wheel_check_.AddScan(pose(), Pose2::Identity(), stamp_us, false);
     last_motion_ = Between(previous, pose_);
@@ -128,13 +131,17 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
     return Status::kOk;
   }
   // 2. First registration against the submap (not for the very first scan: nothing to match).
-  bool keep_out = false;
+  bool keep_out = false, bent = false;
+  const bool first = s_.submap->size() == 0;
+  const std::uint32_t restarts = counters_.submap_restarts;
+  bent_against_single_ = false;
   const bool registered = config_.front_end.enable_registration && s_.submap->size() > 0;
   if (registered) {
     RebuildSubmapReferenceIfDue();
     const bool uncertain = UncertainPrediction(predicted);
     RegisterScan(beams, motion, since_last_us, &projected, predicted);
-    keep_out = AfterFirstRegistration(uncertain, since_last_us, projected.hits) || KeepOutBent(projected.hits);
+    keep_out = AfterFirstRegistration(uncertain, since_last_us, projected.hits);
+    if (!keep_out) keep_out = bent = KeepOutBent(projected.hits);
   } else {
     pose_ = predicted;
   }
@@ -145,6 +152,14 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   // its last rate long after the robot stopped would spin the pose away (no wheels to say so).
   if (consecutive_rejections_ > 0) last_motion_ = Pose2{0.5f * last_motion_.x, 0.5f * last_motion_.y, 0.5f * last_motion_.theta};
   last_motion_us_ = static_cast<std::int32_t>(since_last_us);
+  if (FixedLag()) {
+    FlushPendingScan(beams, stamp_us, previous, since_last_us, projected, keep_out, bent, first,
+                     counters_.submap_restarts != restarts);
+    StepBackEnd();
+    FinishScan(since_last_us);
+    return Status::kOk;
+  }
+  pending_.active = false;  // wheels or a gyro from now on: a waiting scan is dropped
   // 4a. The submap takes every scan (its own ring decides what leaves), but not a rejected one
   // placed by an uncertain prediction.
   if (!keep_out) {
@@ -162,14 +177,113 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
     if (last_scan_region_ >= 0) last_scan_in_region_ = Between(regions_[last_scan_region_].anchor, pose());
   } else if (lost_in_region_ && anchor_region_ >= 0) {
     ++counters_.scans_into_anchor_map;
-    InsertIntoRegion(projected, anchor_region_);
+    InsertIntoRegion(projected, anchor_region_, pose());
   } else {
-    InsertIntoRegion(projected, regions_.current());
+    InsertIntoRegion(projected, regions_.current(), pose());
   }
   // 5. Back end: at most one queued job.
   StepBackEnd();
   FinishScan(since_last_us);
   return Status::kOk;
+}
+
+bool FrontEnd::FixedLag() const {
+  return config_.front_end.lidar_only_fixed_lag && config_.front_end.enable_registration && !HeadingMeasured();
+}
+
+Pose2 FrontEnd::PendingVelocity(std::int64_t stamp_us) const {
+  const float after_s = static_cast<float>(stamp_us - pending_.stamp_us) * 1e-6f;
+  const Pose2 after = Between(pending_.pose, pose_);
+  const Pose2 v{after.x / after_s, after.y / after_s, after.theta / after_s};
+  if (pending_.first) return Pose2{0.5f * v.x, 0.5f * v.y, 0.5f * v.theta};  // from a standstill
+  const float before_s = static_cast<float>(pending_.since_before_us) * 1e-6f;
+  if (pending_.since_before_us <= 0 || before_s > 2.0f * after_s) return v;
+  // The step before, turned from the earlier scan's frame into this one's.
+  const Pose2 b = Between(pending_.before, pending_.pose);
+  const float c = std::cos(b.theta), s = std::sin(b.theta);
+  const Pose2 u{(c * b.x + s * b.y) / before_s, (c * b.y - s * b.x) / before_s, b.theta / before_s};
+  return Pose2{0.5f * (u.x + v.x), 0.5f * (u.y + v.y), 0.5f * (u.theta + v.theta)};
+}
+
+void FrontEnd::FlushPendingScan(Span<const Beam> beams, std::int64_t stamp_us, const Pose2& previous,
+                                std::int64_t since_last_us, const ProjectedScan& current, bool keep_out, bool bent,
+                                bool first, bool restarted) {
+  const FrontEndConfig& f = config_.front_end;
+  bool flushed = false, into_maps = false;
+  Pose2 at;
+  ProjectedScan projected;
+  if (first) {
+    // The run's first scan goes into the submap at once, projected with no motion known (the
+    // next scan needs something to match); it is projected again once that scan is registered.
+    (void)s_.submap->Add(pose_, Span<const Point2>(s_.hits.data(), current.hits));
+    ++scans_since_submap_lines_;
+  } else if (pending_.active) {
+    // The current scan's points are no longer needed: the waiting scan's take their place.
+    const ScanMotion motion(odometry_, f.gyro_heading, PendingVelocity(stamp_us), pending_.stamp_us);
+    projected = ProjectScan(Span<const PackedBeam>(s_.pending_beams.data(), pending_.beams), config_.lidar, motion,
+                            s_.hits, s_.free_ends);
+    at = pending_.pose;
+    // Registered again from where it was placed (not after a rejection: that pose is a guess).
+    bool registered = false;
+    if (!pending_.rejected && !pending_.first) {
+      const RegistrationResult r =
+          RegisterFirst(*s_.submap_reference, nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
+                        Span<const Point2>(s_.hits.data(), projected.hits),
+                        pending_.since_before_us > 0 ? pending_.before : pending_.pose, pending_.pose, f,
+                        s_.correspondences, &fe_counters_.search, kPriorXyWithoutWheels, kPriorThetaWithoutHeading);
+      if (r.verdict == Status::kOk) {
+        at = r.pose;
+        registered = true;
+        ++fe_counters_.lag_reregistered;
+      }
+    }
+    // Kept out as bent, it is straight now if it registers again close to where it was placed.
+    const Pose2 moved = Between(pending_.pose, at);
+    const bool straight = pending_.bent && registered && std::hypot(moved.x, moved.y) <= kLagBentMaxMoveM &&
+                          std::fabs(moved.theta) <= kLagBentMaxMoveRad;
+    if (straight) ++fe_counters_.lag_bent_taken;
+    if (pending_.first || (bent_against_single_ && !pending_.rejected && !straight)) {
+      // The submap's lone scan (this one, or an older one while a turn starts) gives way to
+      // this one, de-skewed from both sides.
+      if (!restarted && s_.submap->size() == 1) {
+        s_.submap->Reset(config_.grid, f.submap_scans, f.submap_miss_range_m);
+        (void)s_.submap->Add(at, Span<const Point2>(s_.hits.data(), projected.hits));
+        scans_since_submap_lines_ = static_cast<std::uint32_t>(f.submap_line_period);  // rebuild next scan
+      }
+    } else if ((!pending_.kept_out || straight) && !restarted) {
+      (void)s_.submap->Add(at, Span<const Point2>(s_.hits.data(), projected.hits));
+      ++scans_since_submap_lines_;
+    }
+    flushed = true;
+    into_maps = !pending_.kept_out || straight;
+  }
+  TrackRegions();
+  if (flushed) {
+    const Pose2 world = submap_pose_ * at;
+    if (!into_maps || config_.localisation.localise_only) {
+      ++counters_.scans_not_inserted;
+    } else if (lost_in_region_ && anchor_region_ >= 0) {
+      ++counters_.scans_into_anchor_map;
+      InsertIntoRegion(projected, anchor_region_, world);
+    } else {
+      InsertIntoRegion(projected, regions_.current(), world);
+    }
+  }
+  // The current scan's pose is known in its map's frame now; the scan itself waits.
+  last_scan_region_ = (keep_out || lost_in_region_) && anchor_region_ >= 0 ? anchor_region_ : regions_.current();
+  if (last_scan_region_ >= 0) last_scan_in_region_ = Between(regions_[last_scan_region_].anchor, pose());
+  const std::size_t n = beams.size() < s_.pending_beams.size() ? beams.size() : s_.pending_beams.size();
+  for (std::size_t i = 0; i < n; ++i) s_.pending_beams[i] = PackedBeam::Pack(beams[i]);
+  pending_.active = true;
+  pending_.first = first;
+  pending_.kept_out = keep_out;
+  pending_.bent = bent;
+  pending_.rejected = consecutive_rejections_ > 0;
+  pending_.beams = static_cast<std::uint16_t>(n);
+  pending_.stamp_us = stamp_us;
+  pending_.since_before_us = first ? 0 : since_last_us;
+  pending_.pose = pose_;
+  pending_.before = previous;
 }
 
 void FrontEnd::TrackRegions() {
@@ -213,6 +327,10 @@ bool FrontEnd::KeepOutBent(std::size_t hits) {
     return false;
   }
   ++counters_.scans_kept_out_bent;
+  if (s_.submap->size() == 1 && FixedLag()) {
+    bent_against_single_ = true;  // FlushPendingScan puts the waiting scan in its place
+    return true;
+  }
   if (s_.submap->size() == 1) {
     // A submap of one scan (a run that starts in a turn: that scan was de-skewed with no motion
     // known) is that scan: this one, de-skewed with the motion just found, is less bent.
@@ -551,15 +669,15 @@ RegistrationResult FrontEnd::RegisterSubmap(RegionalMap& r) {
   return res;
 }
 
-void FrontEnd::InsertIntoRegion(const ProjectedScan& projected, int index) {
+void FrontEnd::InsertIntoRegion(const ProjectedScan& projected, int index, const Pose2& world) {
   last_scan_region_ = index;
   if (last_scan_region_ >= 0) {
     RegionalMap& r = regions_[last_scan_region_];
-    last_scan_in_region_ = Between(r.anchor, pose());
+    last_scan_in_region_ = Between(r.anchor, world);
     r.path_at_last_scan_m = path_m_;
   }
   // The submap already copied the robot-frame points: they may move into the region's frame.
-  const InsertionStats st = regions_.InsertScan(pose(), Span<Point2>(s_.hits.data(), projected.hits),
+  const InsertionStats st = regions_.InsertScan(world, Span<Point2>(s_.hits.data(), projected.hits),
                                                 Span<Point2>(s_.free_ends.data(), projected.free_ends),
                                                 scan_marker_.current(), index);
   counters_.updates_out_of_box += static_cast<std::uint32_t>(st.out_of_box);

@@ -49,6 +49,11 @@ struct FrontEndCounters {
   // constant velocity's (FrontEndConfig::odometry_doubt_*), and how many of those were accepted.
   std::uint32_t odometry_doubted = 0;
   std::uint32_t odometry_overruled = 0;
+  // Fixed-lag de-skew (FrontEndConfig::lidar_only_fixed_lag): scans registered again once projected
+  // with the motion over their own revolution (accepted), and scans kept out as bent
+  // (scans_kept_out_bent) that went into the maps after all.
+  std::uint32_t lag_reregistered = 0;
+  std::uint32_t lag_bent_taken = 0;
   FirstRegistrationStats search;               // the coarse pose search of the first registration
 };
 
@@ -62,6 +67,7 @@ struct FrontEndStorage {
   Span<Point2> target;     // second-registration target points (submap obstacle cells)
   Span<CellIndex> scratch;  // the RegionSet's InsertRays scratch, kMaxBeams
   Span<Correspondence> correspondences;  // registration scratch, kMaxBeams
+  Span<PackedBeam> pending_beams;  // the fixed-lag de-skew's waiting scan, kMaxBeams
   BackEndStorage back_end;
   CoarseScoreGrid* search_grid = nullptr;  // the first registration's coarse search (null: none)
 };
@@ -162,7 +168,8 @@ class FrontEnd {
   DPCR_STAGE RegistrationResult RegisterSubmap(RegionalMap& r);
   // Into map `index`: the current one, or the anchor map while the robot cannot place itself in
   // the current one (its pose is known in the anchor's frame, so that map takes the scan unsmeared).
-  void InsertIntoRegion(const ProjectedScan& projected, int index);
+  // `world`: the scan's pose (the robot's, or the fixed-lag de-skew's waiting scan's).
+  void InsertIntoRegion(const ProjectedScan& projected, int index, const Pose2& world);
   // An empty scan, or a sparse one while the submap is empty (FrontEndConfig::min_start_hits):
   // the pose is the prediction and the scan goes nowhere (counted). True when skipped.
   bool SkipScan(const ProjectedScan& projected, const Pose2& predicted);
@@ -197,6 +204,30 @@ class FrontEnd {
   void FinishScan(std::int64_t since_last_us);
   // A fresh submap from the current scan at pose_ (the regional maps untouched).
   void RestartSubmap(std::size_t hits);
+  // Fixed-lag de-skew (FrontEndConfig::lidar_only_fixed_lag), for a robot with neither wheels nor
+  // a gyro: the de-skew of a scan assumes the motion of the revolution before it, which is one
+  // revolution late whenever a turn starts or stops, and everything registered to a bent scan
+  // inherits the bend (the run's first scan, projected with no motion known, rotated the whole
+  // first map by 0.2-2.75 deg). So each scan is registered as it comes, but goes into the maps
+  // only once the next one is registered: then the motion over its own revolution is known from
+  // both sides, and it is projected again with it and registered again before it goes in.
+  bool FixedLag() const;
+  // The waiting scan's motion per second over its revolution: the mean of the registered motions
+  // before and after it (the scan before to it, it to the current scan), both in its frame. The
+  // run's first scan follows a standstill (the robot does not drive before its lidar reports
+  // full revolutions); after a gap, the motion after it alone.
+  Pose2 PendingVelocity(std::int64_t stamp_us) const;
+  // Steps 3-4 with the lag: the waiting scan projected and registered again and inserted (or kept
+  // out), the regions and the second registration, then the current scan waits in its place.
+  // `current`: the current scan's projection; `first`: it is the run's first (it goes into the
+  // submap at once, for the next scan to match); `restarted`: its registration restarted the submap.
+  void FlushPendingScan(Span<const Beam> beams, std::int64_t stamp_us, const Pose2& previous, std::int64_t since_last_us,
+                        const ProjectedScan& current, bool keep_out, bool bent, bool first, bool restarted);
+  // A scan kept out as bent goes in after its second de-skew when it registers again within these
+  // of where it was first placed (measured: lidar alone, apartment seeds 1-40; without the bound
+  // a turn that stopped short left scans bent both ways, and one seed lost its heading for good).
+  static constexpr float kLagBentMaxMoveRad = 0.0349f;  // 2 deg
+  static constexpr float kLagBentMaxMoveM = 0.2f;
   // Lost and relocalisation (front_end_relocalise.cpp): whether this scan belongs to the lost
   // path (the wheels lifted, a long rejection streak, an unknown start); the lost path itself
   // (local tracking against a fresh submap, one bounded step of the global search, nothing
@@ -295,6 +326,23 @@ class FrontEnd {
   GlobalLocaliser localiser_;
   Pose2 frozen_in_submap_;
   std::int64_t lost_since_us_ = 0;  // when the trouble began: the rejection streak's first scan
+  // The fixed-lag de-skew's waiting scan (its beams packed in s_.pending_beams).
+  struct PendingScan {
+    bool active = false;
+    bool first = false;     // the run's first scan: in the submap already, projected with no motion
+    bool kept_out = false;  // out of the maps (its registration was rejected, or bent)
+    bool bent = false;      // kept out as bent (KeepOutBent)
+    bool rejected = false;  // its first registration was rejected
+    std::uint16_t beams = 0;
+    std::int64_t stamp_us = 0;
+    std::int64_t since_before_us = 0;  // since the scan before it (0: none)
+    Pose2 pose;    // in the submap frame
+    Pose2 before;  // the scan before it, in the submap frame
+  };
+  PendingScan pending_;
+  // This scan, bent, found a submap of one scan: the waiting scan, de-skewed from both sides,
+  // takes that scan's place (KeepOutBent).
+  bool bent_against_single_ = false;
 };
 
 }  // namespace dpcr

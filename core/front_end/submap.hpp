@@ -47,6 +47,9 @@ class Submap {
   // Index 0 is the oldest scan.
   SubmapScanView scan(int i) const;
   std::uint32_t recentres() const { return recentres_; }
+  // The ray-casting scratch (kMaxBeams cells), only used inside Add: the regional maps' insertion
+  // shares it (Mapper), which frees room for the fixed-lag de-skew's packed scan.
+  Span<CellIndex> ray_scratch() const { return scratch_; }
 
   // Keep the box centred within this distance of the robot (m).
   static constexpr float kRecentreDistanceM = 2.0f;

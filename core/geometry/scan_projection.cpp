@@ -11,21 +11,31 @@ bool Valid(const Beam& b, const LidarConfig& lidar) {
   return std::isfinite(b.range_m) && b.range_m >= lidar.min_range_m && b.range_m <= lidar.max_range_m;
 }
 
+// The beams of a scan as they came, or packed (PackedBeam), read one at a time.
+Beam BeamAt(Span<const Beam> beams, std::size_t i) { return beams[i]; }
+Beam BeamAt(Span<const PackedBeam> beams, std::size_t i) { return beams[i].Unpack(); }
+
 // Whether a valid return within two beams of beam i agrees with its range (LidarConfig::drop_isolated_returns).
-bool Confirmed(Span<const Beam> beams, std::size_t i, const LidarConfig& lidar) {
-  const float r = beams[i].range_m, step = 0.05f + 0.05f * r;
+template <class Beams>
+bool Confirmed(Beams beams, std::size_t i, const LidarConfig& lidar) {
+  const float r = BeamAt(beams, i).range_m, step = 0.05f + 0.05f * r;
   for (std::size_t k = 1; k <= 2; ++k) {
     const float tolerance = static_cast<float>(k) * step;
-    if (i >= k && Valid(beams[i - k], lidar) && std::fabs(beams[i - k].range_m - r) <= tolerance) return true;
-    if (i + k < beams.size() && Valid(beams[i + k], lidar) && std::fabs(beams[i + k].range_m - r) <= tolerance) return true;
+    if (i >= k) {
+      const Beam n = BeamAt(beams, i - k);
+      if (Valid(n, lidar) && std::fabs(n.range_m - r) <= tolerance) return true;
+    }
+    if (i + k < beams.size()) {
+      const Beam n = BeamAt(beams, i + k);
+      if (Valid(n, lidar) && std::fabs(n.range_m - r) <= tolerance) return true;
+    }
   }
   return false;
 }
 
-}  // namespace
-
-ProjectedScan ProjectScan(Span<const Beam> beams, const LidarConfig& lidar, const ScanMotion& motion,
-                          Span<Point2> hits_out, Span<Point2> free_ends_out) {
+template <class Beams>
+ProjectedScan Project(Beams beams, const LidarConfig& lidar, const ScanMotion& motion, Span<Point2> hits_out,
+                      Span<Point2> free_ends_out) {
   DPCR_ASSERT(hits_out.size() >= beams.size() && free_ends_out.size() >= beams.size());
   ProjectedScan out;
   const bool deskew = motion.moves();
@@ -33,7 +43,7 @@ ProjectedScan ProjectScan(Span<const Beam> beams, const LidarConfig& lidar, cons
   std::int32_t cached_offset = 0;
   Pose2 sensor = lidar.mount;
   for (std::size_t i = 0; i < beams.size(); ++i) {
-    const Beam& b = beams[i];
+    const Beam b = BeamAt(beams, i);
     if (deskew && b.offset_us != cached_offset) {
       cached_offset = b.offset_us;
       sensor = motion.At(b.offset_us) * lidar.mount;
@@ -51,6 +61,18 @@ ProjectedScan ProjectScan(Span<const Beam> beams, const LidarConfig& lidar, cons
     }
   }
   return out;
+}
+
+}  // namespace
+
+ProjectedScan ProjectScan(Span<const Beam> beams, const LidarConfig& lidar, const ScanMotion& motion,
+                          Span<Point2> hits_out, Span<Point2> free_ends_out) {
+  return Project(beams, lidar, motion, hits_out, free_ends_out);
+}
+
+ProjectedScan ProjectScan(Span<const PackedBeam> beams, const LidarConfig& lidar, const ScanMotion& motion,
+                          Span<Point2> hits_out, Span<Point2> free_ends_out) {
+  return Project(beams, lidar, motion, hits_out, free_ends_out);
 }
 
 }  // namespace dpcr

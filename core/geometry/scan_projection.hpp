@@ -22,5 +22,8 @@ struct ProjectedScan {
 // Points are expressed in the robot frame at the scan stamp (the one `motion` was made for).
 ProjectedScan ProjectScan(Span<const Beam> beams, const LidarConfig& lidar, const ScanMotion& motion,
                           Span<Point2> hits_out, Span<Point2> free_ends_out);
+// The same for a scan kept packed (FrontEnd's fixed-lag de-skew).
+ProjectedScan ProjectScan(Span<const PackedBeam> beams, const LidarConfig& lidar, const ScanMotion& motion,
+                          Span<Point2> hits_out, Span<Point2> free_ends_out);
 
 }  // namespace dpcr

@@ -102,7 +102,9 @@ TEST_CASE("A rejected scan under an uncertain prediction goes into no map, a str
 
 TEST_CASE("Without odometry a rejected scan is never fused") {
   auto m = std::make_unique<M>();
-  REQUIRE(m->Init(dpcr::MapperConfig{}) == dpcr::Status::kOk);
+  dpcr::MapperConfig config;
+  config.front_end.lidar_only_fixed_lag = false;  // below: the same one revolution late
+  REQUIRE(m->Init(config) == dpcr::Status::kOk);
   const dpcr::test::SyntheticRun<M> run(8.0f, 10, 450);
   (void)m->AddScan(run.scans[0]);
   const std::vector<std::int16_t> before = Render(*m);
@@ -111,6 +113,26 @@ TEST_CASE("Without odometry a rejected scan is never fused") {
   REQUIRE(m->counters().scans_rejected == 1);
   REQUIRE(m->counters().scans_kept_out_rejected == 1);
   REQUIRE(m->counters().scans_fused_at_prediction == 0);
+  REQUIRE(Render(*m) == before);
+}
+
+TEST_CASE("Without odometry, scans going into the maps a revolution late, a rejected scan is never fused") {
+  // FrontEndConfig::lidar_only_fixed_lag: each scan goes in once the next one is registered.
+  auto m = std::make_unique<M>();
+  REQUIRE(m->Init(dpcr::MapperConfig{}) == dpcr::Status::kOk);
+  const dpcr::test::SyntheticRun<M> run(8.0f, 10, 450);
+  (void)m->AddScan(run.scans[0]);
+  REQUIRE(m->tiles_used() == 0);  // the first scan waits (in the submap only)
+  (void)m->AddScan(run.scans[1]);
+  REQUIRE(m->tiles_used() > 0);  // the first scan is in
+  std::mt19937 rng(3);
+  (void)m->AddScan(Junk(run.scans[2].stamp_us, &rng));  // rejected; the second scan goes in
+  REQUIRE(m->counters().scans_kept_out_rejected == 1);
+  const std::vector<std::int16_t> before = Render(*m);
+  (void)m->AddScan(run.scans[3]);  // the rejected scan's turn: it stays out
+  REQUIRE(m->counters().scans_rejected == 1);
+  REQUIRE(m->counters().scans_fused_at_prediction == 0);
+  REQUIRE(m->front_end_counters().lag_reregistered == 1);  // the second scan; not the rejected one
   REQUIRE(Render(*m) == before);
 }
 
