@@ -11,7 +11,8 @@ namespace dpcr {
 struct OdometrySample {
   std::int64_t stamp_us = 0;
   Pose2 pose;                  // wheel pose in the odometry frame (drifts; only increments matter)
-  // false: a gyro-only robot (no wheel encoders): `pose` is constant, only the rate tells motion.
+  // false: a gyro-only robot (no wheel encoders): `pose` is constant, only the rate tells motion
+  // (or wheels whose translation the WheelCheck set aside: `pose` is theirs, for that check only).
   bool has_wheels = true;
   bool has_gyro = false;
   // The wheels are off the floor (a vacuum's wheel-drop switches; the motors stop): the robot is
