@@ -168,18 +168,11 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   }
   // 3. Regions, and the second registration.
   TrackRegions();
-  // 4b. Once into the current regional map, or the anchor map while the robot cannot place
-  // itself in the current one; not a scan kept out above, nor in localise-only mode.
-  if (keep_out || config_.localisation.localise_only) {
-    ++counters_.scans_not_inserted;
+  // 4b. Once into a regional map (InsertIntoMaps).
+  if (!InsertIntoMaps(projected, pose(), keep_out)) {
     // Its pose is still known in the anchor region's frame.
     last_scan_region_ = anchor_region_ >= 0 ? anchor_region_ : regions_.current();
     if (last_scan_region_ >= 0) last_scan_in_region_ = Between(regions_[last_scan_region_].anchor, pose());
-  } else if (lost_in_region_ && anchor_region_ >= 0) {
-    ++counters_.scans_into_anchor_map;
-    InsertIntoRegion(projected, anchor_region_, pose());
-  } else {
-    InsertIntoRegion(projected, regions_.current(), pose());
   }
   // 5. Back end: at most one queued job.
   StepBackEnd();
@@ -258,17 +251,7 @@ void FrontEnd::FlushPendingScan(Span<const Beam> beams, std::int64_t stamp_us, c
     into_maps = !pending_.kept_out || straight;
   }
   TrackRegions();
-  if (flushed) {
-    const Pose2 world = submap_pose_ * at;
-    if (!into_maps || config_.localisation.localise_only) {
-      ++counters_.scans_not_inserted;
-    } else if (lost_in_region_ && anchor_region_ >= 0) {
-      ++counters_.scans_into_anchor_map;
-      InsertIntoRegion(projected, anchor_region_, world);
-    } else {
-      InsertIntoRegion(projected, regions_.current(), world);
-    }
-  }
+  if (flushed) (void)InsertIntoMaps(projected, submap_pose_ * at, !into_maps);
   // The current scan's pose is known in its map's frame now; the scan itself waits.
   last_scan_region_ = (keep_out || lost_in_region_) && anchor_region_ >= 0 ? anchor_region_ : regions_.current();
   if (last_scan_region_ >= 0) last_scan_in_region_ = Between(regions_[last_scan_region_].anchor, pose());
@@ -667,6 +650,20 @@ RegistrationResult FrontEnd::RegisterSubmap(RegionalMap& r) {
     ++fe_counters_.second_rejected;
   }
   return res;
+}
+
+bool FrontEnd::InsertIntoMaps(const ProjectedScan& projected, const Pose2& world, bool keep_out) {
+  if (keep_out || config_.localisation.localise_only) {
+    ++counters_.scans_not_inserted;
+    return false;
+  }
+  if (lost_in_region_ && anchor_region_ >= 0) {
+    ++counters_.scans_into_anchor_map;
+    InsertIntoRegion(projected, anchor_region_, world);
+  } else {
+    InsertIntoRegion(projected, regions_.current(), world);
+  }
+  return true;
 }
 
 void FrontEnd::InsertIntoRegion(const ProjectedScan& projected, int index, const Pose2& world) {

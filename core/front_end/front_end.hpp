@@ -170,6 +170,9 @@ class FrontEnd {
   // the current one (its pose is known in the anchor's frame, so that map takes the scan unsmeared).
   // `world`: the scan's pose (the robot's, or the fixed-lag de-skew's waiting scan's).
   void InsertIntoRegion(const ProjectedScan& projected, int index, const Pose2& world);
+  // Once into the current regional map, or the anchor map while the robot cannot place itself in
+  // the current one; not a scan kept out, nor in localise-only mode (false, counted).
+  bool InsertIntoMaps(const ProjectedScan& projected, const Pose2& world, bool keep_out);
   // An empty scan, or a sparse one while the submap is empty (FrontEndConfig::min_start_hits):
   // the pose is the prediction and the scan goes nowhere (counted). True when skipped.
   bool SkipScan(const ProjectedScan& projected, const Pose2& predicted);
