@@ -145,8 +145,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   } else {
     pose_ = predicted;
   }
-  wheel_check_.AddScan(pose(), odometry_.empty() ? Pose2::Identity() : odometry_.PoseAt(stamp_us), stamp_us,
-                       registered && consecutive_rejections_ == 0);
+  wheel_check_.AddScan(pose(), last_odom_, stamp_us, registered && consecutive_rejections_ == 0);
   last_motion_ = Between(previous, pose_);
   // In a rejection streak the constant velocity fades (halves each scan): a turn carried on at
   // its last rate long after the robot stopped would spin the pose away (no wheels to say so).

@@ -283,7 +283,7 @@ class FrontEnd {
   RegionSet regions_;
   Pose2 pose_;         // robot in the submap frame
   Pose2 submap_pose_;  // submap frame in the world
-  Pose2 last_odom_;
+  Pose2 last_odom_;  // the odometry pose at the last scan's stamp (Predict)
   Pose2 last_motion_;  // the last scan-to-scan motion, in the earlier scan's frame
   std::int32_t last_motion_us_ = 0;   // the time it took
   static constexpr float kMaxVelocityScale = 2.0f;

@@ -108,6 +108,27 @@ std::string RunToEnd(dpcr::board::Firmware* firmware, LoopRun* run, const Office
   return text;
 }
 
+// A firmware with the office's configuration on `run`'s ports and an in-memory store, started
+// and run to the end (RunToEnd); `text` is what it logged.
+struct FinishedRun {
+  FinishedRun(const OfficeStreams& o, LoopRun* run, std::FILE* log = std::tmpfile())
+      : firmware(ConfigFor(o), dpcr::board::FirmwarePorts{&run->uart, &run->can, &run->clock, &store, nullptr}, log) {
+    REQUIRE(firmware.Start());
+    text = RunToEnd(&firmware, run, o, log);
+  }
+  MemoryStore store;
+  dpcr::board::Firmware firmware;
+  std::string text;
+};
+
+// The robot ends where the device replay of the office's clean streams does.
+void CheckEndsWithCleanRun(const dpcr::board::Firmware& firmware, const OfficeStreams& o) {
+  const dpcr::Pose2 a = firmware.mapper().pose();
+  INFO("end " << a.x << " " << a.y << " " << a.theta << ", clean run " << o.pose.x << " " << o.pose.y << " " << o.pose.theta);
+  CHECK(std::hypot(a.x - o.pose.x, a.y - o.pose.y) < 0.10f);
+  CHECK(std::fabs(dpcr::NormalizeAngle(a.theta - o.pose.theta)) < 0.05f);
+}
+
 }  // namespace
 
 TEST_CASE("firmware loop on fake ports maps as the device replay does, the map file saved once, loadable") {
@@ -267,9 +288,7 @@ TEST_CASE("firmware loop: without CAN the lidar maps alone, said in the log, the
   CHECK(firmware.device_counters().wheel_gaps == 1);
   CHECK(firmware.scans() == o.scans);
   // Three seconds of lidar alone, then the wheels again: the robot ends where the clean run does.
-  const dpcr::Pose2 a = firmware.mapper().pose();
-  CHECK(std::hypot(a.x - o.pose.x, a.y - o.pose.y) < 0.10f);
-  CHECK(std::fabs(dpcr::NormalizeAngle(a.theta - o.pose.theta)) < 0.05f);
+  CheckEndsWithCleanRun(firmware, o);
 }
 
 TEST_CASE("firmware loop: wheels silent (frames missing) -> lidar alone, their return resumes the odometry without a jump") {
@@ -281,19 +300,13 @@ TEST_CASE("firmware loop: wheels silent (frames missing) -> lidar alone, their r
     if (r.stamp_us < from || r.stamp_us >= to) records.push_back(r);
   }
   LoopRun run(o, records);
-  MemoryStore store;
-  std::FILE* log = std::tmpfile();
-  dpcr::board::Firmware firmware(ConfigFor(o), dpcr::board::FirmwarePorts{&run.uart, &run.can, &run.clock, &store, nullptr}, log);
-  REQUIRE(firmware.Start());
-  const std::string text = RunToEnd(&firmware, &run, o, log);
-  INFO(text);
-  CHECK(text.find("no wheel ticks on CAN can0 for 500 ms: mapping from the lidar alone") != std::string::npos);
-  CHECK(text.find("wheels back on CAN can0 after 2.") != std::string::npos);
-  CHECK(firmware.counters().wheel_silences == 1);
-  CHECK(firmware.device_counters().wheel_gaps == 1);
-  const dpcr::Pose2 a = firmware.mapper().pose();
-  CHECK(std::hypot(a.x - o.pose.x, a.y - o.pose.y) < 0.10f);
-  CHECK(std::fabs(dpcr::NormalizeAngle(a.theta - o.pose.theta)) < 0.05f);
+  const FinishedRun f(o, &run);
+  INFO(f.text);
+  CHECK(f.text.find("no wheel ticks on CAN can0 for 500 ms: mapping from the lidar alone") != std::string::npos);
+  CHECK(f.text.find("wheels back on CAN can0 after 2.") != std::string::npos);
+  CHECK(f.firmware.counters().wheel_silences == 1);
+  CHECK(f.firmware.device_counters().wheel_gaps == 1);
+  CheckEndsWithCleanRun(f.firmware, o);
 }
 
 // The office's ticks frames rewritten to carry the heading alone (each wheel's count replaced by
@@ -332,38 +345,27 @@ std::vector<dpcr::CandumpRecord> HeadingOnlyTicks(const std::vector<dpcr::Candum
 TEST_CASE("firmware loop: ticks that carry only the heading are noticed, their translation ignored, said in the log") {
   const OfficeStreams& o = dpcr::test::Office15s();
   LoopRun run(o, HeadingOnlyTicks(o.records));
-  MemoryStore store;
-  std::FILE* log = std::tmpfile();
-  dpcr::board::Firmware firmware(ConfigFor(o), dpcr::board::FirmwarePorts{&run.uart, &run.can, &run.clock, &store, nullptr}, log);
-  REQUIRE(firmware.Start());
-  const std::string text = RunToEnd(&firmware, &run, o, log);
-  INFO(text);
-  CHECK(text.find("wheel ticks on CAN can0 miss the motion the lidar sees: their translation is ignored (their heading is kept)") !=
+  const FinishedRun f(o, &run);
+  INFO(f.text);
+  CHECK(f.text.find("wheel ticks on CAN can0 miss the motion the lidar sees: their translation is ignored (their heading is kept)") !=
         std::string::npos);
-  CHECK(firmware.mapper().counters().odometry_without_wheel_translation > 0);
+  CHECK(f.firmware.mapper().counters().odometry_without_wheel_translation > 0);
   // The robot ends where the run with its true wheels does.
-  const dpcr::Pose2 a = firmware.mapper().pose();
-  INFO("end " << a.x << " " << a.y << " " << a.theta << ", with true wheels " << o.pose.x << " " << o.pose.y << " " << o.pose.theta);
-  CHECK(std::hypot(a.x - o.pose.x, a.y - o.pose.y) < 0.10f);
-  CHECK(std::fabs(dpcr::NormalizeAngle(a.theta - o.pose.theta)) < 0.05f);
+  CheckEndsWithCleanRun(f.firmware, o);
 }
 
 TEST_CASE("firmware loop: a kidnap's status frames make the robot lost as in the device replay, and are counted") {
   const OfficeStreams& o = dpcr::test::Office15sKidnapped();
   LoopRun run(o, o.records);
-  MemoryStore store;
-  std::FILE* log = std::tmpfile();
-  dpcr::board::Firmware firmware(ConfigFor(o), dpcr::board::FirmwarePorts{&run.uart, &run.can, &run.clock, &store, nullptr}, log);
-  REQUIRE(firmware.Start());
-  const std::string text = RunToEnd(&firmware, &run, o, log);
-  INFO(text);
+  const FinishedRun f(o, &run);
+  INFO(f.text);
   REQUIRE(o.lifted_scans >= 30);  // carried 3-6 s: the replay kept those scans out
-  CHECK(firmware.mapper().counters().lifted_scans == o.lifted_scans);
-  CHECK(firmware.mapper().counters().lost_events == o.lost_events);
-  CHECK(firmware.device_counters().lifts == 1);
-  CHECK(firmware.device_counters().can.reserved_flags == 0);
-  CHECK(text.find(" lifts=1 ") != std::string::npos);  // the summary line
-  const dpcr::Pose2 a = firmware.mapper().pose();
+  CHECK(f.firmware.mapper().counters().lifted_scans == o.lifted_scans);
+  CHECK(f.firmware.mapper().counters().lost_events == o.lost_events);
+  CHECK(f.firmware.device_counters().lifts == 1);
+  CHECK(f.firmware.device_counters().can.reserved_flags == 0);
+  CHECK(f.text.find(" lifts=1 ") != std::string::npos);  // the summary line
+  const dpcr::Pose2 a = f.firmware.mapper().pose();
   CHECK(a.x == o.pose.x);  // the same inputs in the same order: bit-identical
   CHECK(a.y == o.pose.y);
 }
