@@ -8,6 +8,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "core/front_end/wheel_check.hpp"
 #include "host_sim/eval/anchor_errors.hpp"
 
 namespace dpcr::output {
@@ -86,9 +87,10 @@ std::string TrackingSummary(const nlohmann::json& m) {
                   ignored, c["odometry_samples"].get<unsigned>());
     line += buf;
   }
-  // A turn scale far from 1: the wheel geometry given (track width) is not the robot's.
+  // A turn scale far from 1 (as far as the wheel check corrects it): the wheel geometry given
+  // (track width) is not the robot's.
   const double scale = m.contains("wheels") ? m["wheels"].value("heading_scale", 1.0) : 1.0;
-  if (std::fabs(scale - 1.0) > 0.05) {
+  if (std::fabs(scale - 1.0) > static_cast<double>(dpcr::WheelCheck::kScaleDeadBand)) {
     std::snprintf(buf, sizeof buf, "; the lidar turns %.2f x what the wheels say (check the track width)", scale);
     line += buf;
   }
