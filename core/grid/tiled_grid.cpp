@@ -350,6 +350,9 @@ TiledGrid::SegmentStats TiledGrid::UpdateCells(Span<const CellIndex> cells, std:
   DPCR_ASSERT(stamp != 0);
   const Learning l = LearningOf(delta, lo, hi);
   SegmentStats st;
+  // A scan's hits come in beam order, mostly several to a tile: the last tile is kept.
+  int last_slot = -1;
+  Tile* tile = nullptr;
   for (const CellIndex c : cells) {
     int offset = 0;
     const int slot = SlotOf(c, &offset);
@@ -357,7 +360,10 @@ TiledGrid::SegmentStats TiledGrid::UpdateCells(Span<const CellIndex> cells, std:
       ++st.out_of_box;
       continue;
     }
-    Tile* tile = TileForWrite(slot);
+    if (slot != last_slot) {
+      tile = TileForWrite(slot);
+      last_slot = tile != nullptr ? slot : -1;  // a full pool is asked again, as before
+    }
     if (tile == nullptr) {
       ++st.dropped_pool_full;
     } else if (MarkOnce(tile, offset, stamp)) {
