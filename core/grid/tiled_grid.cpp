@@ -175,18 +175,69 @@ inline void UpdateCell(Tile* tile, std::ptrdiff_t i, const TiledGrid::Learning& 
 
 }  // namespace
 
+// A segment with both ends in one tile (most of a submap's): its cells lie in the box of its
+// ends, so it is one run of cells in that tile, and the minor axis needs no test against the
+// tile's edge. WalkSegment's Bresenham steps.
 template <bool kXMajor, int kMajorS, bool kStamped, bool kSettle>
-inline void TiledGrid::WalkSegment(CellSegment s, const Learning& l, std::uint32_t stamp, SegmentStats* st) {
-  // TraceCells' Bresenham walk (same cells, same order), cut into runs of cells in one tile: the
-  // tile lookup, allocation and stamp check happen once per run, and inside a run the walk moves
-  // the cell's index in the tile (+-1 along x, +-32 along y), which also names its "updated" bit.
-  // BresenhamWalk::Step always moves the major axis (x when kXMajor: dx >= dy) and moves the
-  // minor one when its error term says so. Here the error is kept as in the classic integer line:
-  // g = 2 * minor extent - major extent at the start (g = dx - 2 err when x is major, 2 err + dy
-  // when y is); the minor axis moves when g > 0 (then g -= 2 * major extent), and g += 2 * minor
-  // extent at every step. So a run is a counted loop to the tile edge along the major axis, and
-  // the minor axis is tested against the tile only when it moves.
+__attribute__((always_inline)) inline void TiledGrid::WalkInOneTile(CellSegment s, const Learning& l,
+                                                                    std::uint32_t stamp, SegmentStats* st) {
+  const CellIndex a = s.from, b = s.to;
+  const std::int32_t dx = b.x >= a.x ? b.x - a.x : a.x - b.x, dy = b.y >= a.y ? b.y - a.y : a.y - b.y;
+  const std::int32_t major_n = kXMajor ? dx : dy, minor_n = kXMajor ? dy : dx;
+  if (major_n == 0) return;  // b excluded: no cell
+  const std::int32_t tx = (a.x >> 5) - origin_tile_.x, ty = (a.y >> 5) - origin_tile_.y;
+  if (static_cast<std::uint32_t>(tx) >= static_cast<std::uint32_t>(tiles_x_) ||
+      static_cast<std::uint32_t>(ty) >= static_cast<std::uint32_t>(tiles_y_)) {
+    ++st->out_of_box;
+    return;
+  }
+  Tile* tile = TileForWrite(ty * tiles_x_ + tx);
+  if (tile == nullptr) {
+    st->dropped_pool_full += major_n;
+    return;
+  }
+  if (kStamped && tile->stamp != stamp) {
+    for (std::uint32_t& word : tile->updated) word = 0;
+    tile->stamp = stamp;
+  }
+  const std::int32_t minor_s = kXMajor ? (b.y >= a.y ? 1 : -1) : (b.x >= a.x ? 1 : -1);
+  const std::int32_t major_step = kXMajor ? kMajorS : 32 * kMajorS, minor_step = kXMajor ? 32 * minor_s : minor_s;
+  const std::int32_t two_major = 2 * major_n, two_minor = 2 * minor_n;
+  std::int32_t g = two_minor - major_n;
+  std::ptrdiff_t cell = ((a.y & 31) << 5) | (a.x & 31);
+  std::int32_t k = major_n;
+  do {
+    UpdateCell<kStamped, kSettle>(tile, cell, l);
+    cell += major_step;
+    if (g > 0) {
+      g += two_minor - two_major;
+      cell += minor_step;
+    } else {
+      g += two_minor;
+    }
+  } while (--k != 0);
+  st->applied += major_n;
+}
+
+// TraceCells' Bresenham walk (same cells, same order), cut into runs of cells in one tile: the
+// tile lookup, allocation and stamp check happen once per run, and inside a run the walk moves
+// the cell's index in the tile (+-1 along x, +-32 along y), which also names its "updated" bit.
+// BresenhamWalk::Step always moves the major axis (x when kXMajor: dx >= dy) and moves the
+// minor one when its error term says so. Here the error is kept as in the classic integer line:
+// g = 2 * minor extent - major extent at the start (g = dx - 2 err when x is major, 2 err + dy
+// when y is); the minor axis moves when g > 0 (then g -= 2 * major extent), and g += 2 * minor
+// extent at every step. So a run is a counted loop to the tile edge along the major axis, and
+// the minor axis is tested against the tile only when it moves.
+// Always inlined into the batch's loop (GCC would call it otherwise, and reload the batch's
+// state per segment).
+template <bool kXMajor, int kMajorS, bool kStamped, bool kSettle>
+__attribute__((always_inline)) inline void TiledGrid::WalkSegment(CellSegment s, const Learning& l,
+                                                                  std::uint32_t stamp, SegmentStats* st) {
   static_assert(kTileSide == 32, "one 32-bit word of updated bits per tile row");
+  if (((static_cast<std::uint32_t>(s.from.x ^ s.to.x) | static_cast<std::uint32_t>(s.from.y ^ s.to.y)) >> 5) == 0) {
+    WalkInOneTile<kXMajor, kMajorS, kStamped, kSettle>(s, l, stamp, st);
+    return;
+  }
   const CellIndex a = s.from, b = s.to;
   const std::int32_t dx = b.x >= a.x ? b.x - a.x : a.x - b.x, dy = b.y >= a.y ? b.y - a.y : a.y - b.y;
   const std::int32_t major_n = kXMajor ? dx : dy, minor_n = kXMajor ? dy : dx;
@@ -299,6 +350,9 @@ TiledGrid::SegmentStats TiledGrid::UpdateCells(Span<const CellIndex> cells, std:
   DPCR_ASSERT(stamp != 0);
   const Learning l = LearningOf(delta, lo, hi);
   SegmentStats st;
+  // A scan's hits come in beam order, mostly several to a tile: the last tile is kept.
+  int last_slot = -1;
+  Tile* tile = nullptr;
   for (const CellIndex c : cells) {
     int offset = 0;
     const int slot = SlotOf(c, &offset);
@@ -306,7 +360,10 @@ TiledGrid::SegmentStats TiledGrid::UpdateCells(Span<const CellIndex> cells, std:
       ++st.out_of_box;
       continue;
     }
-    Tile* tile = TileForWrite(slot);
+    if (slot != last_slot) {
+      tile = TileForWrite(slot);
+      last_slot = tile != nullptr ? slot : -1;  // a full pool is asked again, as before
+    }
     if (tile == nullptr) {
       ++st.dropped_pool_full;
     } else if (MarkOnce(tile, offset, stamp)) {

@@ -153,6 +153,9 @@ class TiledGrid {
   SegmentStats WalkSegments(Span<const CellSegment> segments, const Learning& l, std::uint32_t stamp);
   template <bool kXMajor, int kMajorS, bool kStamped, bool kSettle>
   void WalkSegment(CellSegment s, const Learning& l, std::uint32_t stamp, SegmentStats* st);
+  // A segment whose ends lie in one tile: one run, no tile edge to watch.
+  template <bool kXMajor, int kMajorS, bool kStamped, bool kSettle>
+  void WalkInOneTile(CellSegment s, const Learning& l, std::uint32_t stamp, SegmentStats* st);
 
   TilePool* pool_;
   Span<TileId> index_;

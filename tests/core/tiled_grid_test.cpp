@@ -227,14 +227,17 @@ TEST_CASE("UpdateSegment equals per-cell Update along TraceCells (random segment
   // Oracle: the tile-run walk must touch the same cells in the same order as TraceCells + Update,
   // with and without settled cells.
   TwinGrids twins(GENERATE(false, true));
+  // 0: ends anywhere; 12: short segments, most of them inside one tile (the walk's one-run path).
+  const int reach = GENERATE(0, 12);
   dpcr::TiledGrid& fast = twins.a;
   dpcr::TiledGrid& slow = twins.b;
   Lcg next{12345};
   int dropped = 0, exits = 0;
   for (int i = 0; i < 4000; ++i) {
     const std::uint32_t stamp = static_cast<std::uint32_t>(i / 7);  // several segments per "scan"; 0 = no rule
-    const CellIndex a{next(-64, 63), next(-64, 63)};
-    const CellIndex b{next(-90, 90), next(-90, 90)};
+    const CellIndex a = reach == 0 ? CellIndex{next(-64, 63), next(-64, 63)} : CellIndex{next(-80, 80), next(-80, 80)};
+    const CellIndex b = reach == 0 ? CellIndex{next(-90, 90), next(-90, 90)}
+                                   : CellIndex{a.x + next(-reach, reach), a.y + next(-reach, reach)};
     const std::int16_t delta = static_cast<std::int16_t>(next(-400, 400));
     const dpcr::TiledGrid::SegmentStats s = fast.UpdateSegment(a, b, delta, -3000, 3000, stamp);
     dpcr::TiledGrid::SegmentStats o;
@@ -267,7 +270,9 @@ TEST_CASE("UpdateSegment equals per-cell Update along TraceCells (random segment
       at_bounds += (fast.Get(CellIndex{x, y}) == 3000 || fast.Get(CellIndex{x, y}) == -3000) ? 1 : 0;
     }
   }
-  REQUIRE(at_bounds > 0);  // settled cells were exercised
+  // Settled cells were exercised (the short segments spread too thin to reach the bounds; the
+  // settle rule's test walks short ones).
+  if (reach == 0) REQUIRE(at_bounds > 0);
 }
 
 TEST_CASE("UpdateSegments equals UpdateSegment one segment at a time") {
