@@ -56,6 +56,8 @@ struct Options {
   std::vector<int> unsettle_after;  // GridConfig::unsettle_occupied_after, unsettle_free_after (empty: the defaults)
   float unsettle_margin_m = -1.0f;  // GridConfig::unsettle_miss_margin_m (< 0: the default)
   int drop_behind_cells = -1;       // GridConfig::drop_hits_behind_settled_cells (< 0: the default)
+  std::vector<double> lidar_noise;  // range sigma base (m), fraction of the range (empty: the lidar model's)
+  bool ideal_wheels = false;        // no calibration error, no slips (the wheels' ticks still quantise)
 };
 
 // First registrations during the robot's in-place spins (metrics.json "spins").
@@ -132,11 +134,12 @@ void PrintSummary(const Options& opt, const MapperType& mapper, const dpcr::outp
 }
 
 // What was simulated: metrics.json "input".
-nlohmann::json InputMetrics(const Options& opt, const dpcr::sim::Simulation& sim) {
+nlohmann::json InputMetrics(const Options& opt, const dpcr::sim::Simulation& sim, const dpcr::sim::SimConfig& sim_config) {
   const dpcr::sim::Pose2d& start = sim.start_pose();
   return {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed}, {"heading", opt.heading}, {"lidar", opt.lidar}, {"odometry", opt.odometry}, {"spins", opt.spins},
           {"plan", opt.fixed_plan ? "fixed" : "varied by the seed"}, {"start_pose_in_world", {start.x, start.y, start.theta}},
           {"slip_events", sim.slip_events()}, {"people", opt.people},
+          {"lidar_noise", {sim_config.lidar.noise_base_m, sim_config.lidar.noise_fraction}}, {"ideal_wheels", opt.ideal_wheels},
           {"doors", {{"moving", sim.doors().size()}, {"scheduled_changes", sim.doors().scheduled_changes()}}}, {"kidnaps", opt.kidnaps}, {"coverage_tours", sim.tours_completed()}};
 }
 
@@ -153,6 +156,14 @@ dpcr::sim::SimConfig SimulationConfig(const Options& opt) {
   c.kidnaps.from_min = opt.kidnap_from_min;
   c.people.count = opt.people;
   c.doors.enabled = opt.doors;
+  if (!opt.lidar_noise.empty()) {
+    c.lidar.noise_base_m = opt.lidar_noise[0];
+    c.lidar.noise_fraction = opt.lidar_noise[1];
+  }
+  if (opt.ideal_wheels) {
+    c.odometry.systematic_error = false;
+    c.odometry.slips_per_minute = 0.0;
+  }
   return c;
 }
 
@@ -275,7 +286,7 @@ int Run(const Options& opt) {
   std::filesystem::create_directories(opt.out);
   dpcr::output::FinalizeTrajectory(mapper, &run);
   nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
-  metrics["input"] = InputMetrics(opt, sim);
+  metrics["input"] = InputMetrics(opt, sim, sim_config);
   metrics["input"]["unsettle_after"] = {config.grid.unsettle_occupied_after, config.grid.unsettle_free_after};
   AddRelocalisationFigures(opt, mapper, sim, run, recoveries, lost, align, &metrics);
   if (opt.spins > 0) metrics["spins"] = spins.Metrics();
@@ -351,6 +362,10 @@ int main(int argc, char** argv) {
                  "a settled occupied cell (metres; GridConfig::unsettle_miss_margin_m)")->check(CLI::Range(0.0, 100.0));
   app.add_option("--drop-behind", opt.drop_behind_cells, "drop returns 2 to N cells behind a settled wall along their ray "
                  "(range noise through the wall; GridConfig::drop_hits_behind_settled_cells, 0: none)")->check(CLI::Range(0, 255));
+  app.add_option("--lidar-noise", opt.lidar_noise, "range noise of the simulated lidar: sigma = BASE + FRACTION x range "
+                 "(metres, fraction; default: the model's, 0.01,0.005); 0,0: exact ranges")
+      ->expected(2)->delimiter(',')->check(CLI::Range(0.0, 1.0));
+  app.add_flag("--ideal-wheels", opt.ideal_wheels, "wheel odometry without calibration error or slips (ticks still quantise)");
   CLI11_PARSE(app, argc, argv);
   opt.start_pose_given = app.count("--start-pose") > 0;
   if ((opt.localise_only || !opt.map_origin.empty()) && opt.load_map.empty()) {
