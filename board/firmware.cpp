@@ -75,7 +75,7 @@ bool Firmware::Start() {
   device.max_range_m = config_.max_range_m;
   device.laser_offset_m = config_.laser_offset_m;
   device.ApplyTo(&mapper_config.lidar);
-  mapper_config.lidar.drop_isolated_returns = config_.lidar == LidarKind::kXv11;  // its junk readings, as dpcr-replay
+  ApplyLidarModel(config_.lidar, &mapper_config.lidar);  // as dpcr-replay
   mapper_config.front_end.gyro_heading = config_.gyro_heading;
   if (mapper_->Init(mapper_config) != Status::kOk) {
     std::fprintf(log_, "dpcr-firmware: error: mapper configuration rejected\n");

@@ -70,6 +70,12 @@ struct LidarConfig {
   // through walls, up to 6 m: each would put an obstacle, and a tile, outside the home. Off by
   // default: a clean lidar's single-beam returns (a chair leg) are real.
   bool drop_isolated_returns = false;
+  // The lidar's range noise: its sigma at a room's typical range (3 m); 0 = not known. The first
+  // registration never trims residuals below twice this (PlicpConfig::trim_floor_m, when larger):
+  // returns that miss their wall by the lidar's own noise are not outliers. Trimmed as such, an
+  // LD06's (1 cm + 0.5 % of the range) bend the maps (measured: docs/back-end.md, "The lidar's
+  // range noise is what bends the maps"). A SICK LMS (the public logs): ~0.01 m, under the floor.
+  float range_noise_m = 0.0f;
 };
 
 constexpr ReferenceConfig ReferenceWithThreshold(std::int16_t obstacle_threshold) {

@@ -6,6 +6,7 @@
 
 #include "core/config.hpp"
 #include "hal/diff_drive_odometry.hpp"
+#include "hal/lidar_stream.hpp"
 #include "hal/scan_assembler.hpp"
 
 namespace dpcr {
@@ -22,5 +23,15 @@ struct DeviceOptions {
     lidar->mount = Pose2{laser_offset_m, 0.0f, 0.0f};
   }
 };
+
+// What the mapper is told of a lidar model, the same in dpcr-firmware and dpcr-replay --uart: an
+// XV-11's junk readings are dropped (LidarConfig::drop_isolated_returns), and each model's range
+// noise at 3 m (LidarConfig::range_noise_m) is the simulator's model of it: an LD06 1 cm + 0.5 %
+// of the range, an XV-11 1 cm + 1 % (host_sim/sim/sensors.hpp).
+inline void ApplyLidarModel(LidarKind kind, LidarConfig* lidar) {
+  const bool xv11 = kind == LidarKind::kXv11;
+  lidar->drop_isolated_returns = xv11;
+  lidar->range_noise_m = xv11 ? 0.04f : 0.025f;
+}
 
 }  // namespace dpcr

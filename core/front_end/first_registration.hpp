@@ -21,14 +21,21 @@ struct FirstRegistrationStats {
   std::uint32_t search_grid_builds = 0;
 };
 
+// The first registration's PLICP settings (config.front_end.first_registration) for a scan whose
+// motion the wheels measured or not: with them the scan is de-skewed by measurement, and
+// residuals of the lidar's own noise are not outliers: the trim floor is raised to twice
+// LidarConfig::range_noise_m (up to the gate). Without them a residual also holds the de-skew's
+// guess, which the adaptive trim must cut (the lidar alone, XV-11: 0.073 -> 0.088 m with the floor).
+PlicpConfig FirstRegistrationPlicp(const MapperConfig& config, bool wheels);
+
 // `grid_version` / `reference_version`: the score grid is rebuilt from `ref` only when a search
 // needs it and the reference changed since (versions differ). `prior_xy_scale` and
 // `prior_theta_scale` scale the prediction's priors (FrontEndConfig::prior_info_xy, _theta):
-// weaker for a guessed motion.
+// weaker for a guessed motion. `plicp`: PLICP's settings when not config.first_registration.
 RegistrationResult RegisterFirst(const RegistrationReference& ref, CoarseScoreGrid* grid, std::uint32_t* grid_version,
                                  std::uint32_t reference_version, Span<const Point2> points, const Pose2& previous,
                                  const Pose2& predicted, const FrontEndConfig& config, Span<Correspondence> scratch,
                                  FirstRegistrationStats* stats, float prior_xy_scale = 1.0f,
-                                 float prior_theta_scale = 1.0f);
+                                 float prior_theta_scale = 1.0f, const PlicpConfig* plicp = nullptr);
 
 }  // namespace dpcr

@@ -427,12 +427,13 @@ void FrontEnd::RefitSubmapLines() {
 void FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, ProjectedScan* projected,
                             const Pose2& predicted) {
   const FrontEndConfig& f = config_.front_end;
+  const PlicpConfig plicp = FirstRegistrationPlicp(config_, motion.wheels());
   RegistrationResult r =
       // In a rejection streak the search runs on every other scan (each search that did not help
       // is followed by one PLICP-only attempt): the streak's cost stays bounded.
       RegisterFirst(*s_.submap_reference, consecutive_rejections_ % 2 == 0 ? s_.search_grid : nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
                     Span<const Point2>(s_.hits.data(), projected->hits), pose_, predicted, f, s_.correspondences, &fe_counters_.search,
-                    PriorXyScale(motion), PriorThetaScale(motion));
+                    PriorXyScale(motion), PriorThetaScale(motion), &plicp);
   bent_ = false;
   if (!motion.wheels() && dt_us > 0 && !beams.empty()) r = RegisterRedeskewed(beams, motion, dt_us, projected, r);
   if (r.verdict != Status::kOk && motion.wheels() && !motion.gyro()) r = RegisterFromConstantVelocity(projected->hits, dt_us, predicted, r);

@@ -263,7 +263,7 @@ int ReplayDevice(const Options& opt) {
   if (!replay.Open(opt.uart, opt.candump, &error)) throw std::runtime_error(error);
   dpcr::MapperConfig config;
   device.ApplyTo(&config.lidar);
-  config.lidar.drop_isolated_returns = lidar.kind == dpcr::LidarKind::kXv11;  // its junk readings
+  dpcr::ApplyLidarModel(lidar.kind, &config.lidar);
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
   config.front_end.gyro_heading = opt.heading == "gyro";

@@ -219,6 +219,7 @@ bool Simulation::Step(SimEvent* out) {
   ::dpcr::LidarConfig lidar;
   lidar.max_range_m = static_cast<float>(config.lidar.max_range_m);
   lidar.mount = config.lidar.mount.ToPose2();
+  lidar.range_noise_m = static_cast<float>(config.lidar.noise_base_m + 3.0 * config.lidar.noise_fraction);
   return lidar;
 }
 

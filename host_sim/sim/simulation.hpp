@@ -55,7 +55,7 @@ struct SimConfig {
 
 using SimScan = Scan<VacuumProfile::kMaxBeams>;
 
-// The mapper's lidar settings for this simulation's sensor (maximum range, mount pose).
+// The mapper's lidar settings for this simulation's sensor (maximum range, mount pose, range noise).
 ::dpcr::LidarConfig MapperLidarConfig(const SimConfig& config);
 
 enum class SimEventType { kOdometry, kScan };

@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/mapper.hpp"
+#include "hal/device_options.hpp"
 #include "host_sim/drivers/device_files.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
@@ -73,9 +74,11 @@ inline OfficeStreams MakeOfficeStreams(double minutes, int kidnaps = 0) {
   REQUIRE(ReadUartCapture(uart, &o.chunks, &error));
   REQUIRE(ReadCandumpLog(can, &o.records, &error));
   auto reference = std::make_unique<MapperType>();
-  REQUIRE(reference->Init(MapperConfig{}) == Status::kOk);
-  CountingSink sink(reference.get());
   LidarStreamConfig lidar;
+  MapperConfig mapper_config;
+  ApplyLidarModel(lidar.kind, &mapper_config.lidar);  // as dpcr-firmware and dpcr-replay
+  REQUIRE(reference->Init(mapper_config) == Status::kOk);
+  CountingSink sink(reference.get());
   lidar.assembler.angle_map = o.files.angle_map;
   DeviceReplay replay(o.files, lidar, &sink);
   REQUIRE(replay.Open(uart, can, &error));

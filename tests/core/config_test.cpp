@@ -130,6 +130,7 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(lidar.min_range_m, kNonNegative),
       FLOAT_FIELD(lidar.max_range_m, kPositive),
       FLOAT_FIELD(lidar.no_return_free_m, kNonNegative),
+      FLOAT_FIELD(lidar.range_noise_m, kNonNegative),
       FLOAT_FIELD(lidar.mount.x, kOffset),
       FLOAT_FIELD(lidar.mount.y, kOffset),
       FLOAT_FIELD(lidar.mount.theta, kOffset),

@@ -138,3 +138,18 @@ TEST_CASE("The first registration searches only when PLICP rejects, and then rec
                           Pose2{truth.x + 0.2f, truth.y - 0.15f, truth.theta + 19.0f * kDeg}, config, corr, &stats);
   CHECK(stats.searches == 1);
 }
+
+TEST_CASE("The first registration trims above twice the lidar's range noise, only when the wheels measured the motion") {
+  dpcr::MapperConfig config;
+  const float configured = config.front_end.first_registration.trim_floor_m;  // 3 cm
+  CHECK(dpcr::FirstRegistrationPlicp(config, true).trim_floor_m == configured);  // noise not known
+  config.lidar.range_noise_m = 0.025f;  // an LD06 at 3 m
+  CHECK(dpcr::FirstRegistrationPlicp(config, true).trim_floor_m == Approx(0.05f));
+  CHECK(dpcr::FirstRegistrationPlicp(config, false).trim_floor_m == configured);  // a guessed de-skew: trimmed as before
+  CHECK(dpcr::FirstRegistrationPlicp(config, true).huber_m == config.front_end.first_registration.huber_m);
+  config.lidar.range_noise_m = 0.01f;  // a SICK: under the floor
+  CHECK(dpcr::FirstRegistrationPlicp(config, true).trim_floor_m == configured);
+  config.lidar.range_noise_m = 0.4f;  // never beyond the gate
+  CHECK(dpcr::FirstRegistrationPlicp(config, true).trim_floor_m == config.front_end.first_registration.gate_m);
+  REQUIRE(dpcr::Validate(config) == dpcr::Status::kOk);
+}
