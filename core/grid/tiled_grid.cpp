@@ -28,9 +28,11 @@ CellBox TiledGrid::box() const {
 }
 
 Tile* TiledGrid::TileForWrite(int slot) {
-  DPCR_ASSERT(pool_ != nullptr);
   TileId& id = index_[static_cast<std::size_t>(slot)];
   if (id == kNoTile) {
+    // Checked here, not per call: every tile of a grid comes from its pool, so a grid without
+    // one holds none and any write gets here first.
+    DPCR_ASSERT(pool_ != nullptr);
     id = pool_->Allocate();
     if (id == kNoTile) return nullptr;
     ++allocated_tiles_;
@@ -227,7 +229,10 @@ __attribute__((always_inline)) inline void TiledGrid::WalkInOneTile(CellSegment 
 // g = 2 * minor extent - major extent at the start (g = dx - 2 err when x is major, 2 err + dy
 // when y is); the minor axis moves when g > 0 (then g -= 2 * major extent), and g += 2 * minor
 // extent at every step. So a run is a counted loop to the tile edge along the major axis, and
-// the minor axis is tested against the tile only when it moves.
+// the minor axis is tested against the tile only when it moves. From run to run the walk keeps
+// its place in tile terms (the tile's slot coordinates, the index in it, the steps to the tile's
+// edge on each axis): the next run starts in the neighbouring tile with no set-up from global
+// cells (a ray crosses a tile every ~25 cells).
 // Always inlined into the batch's loop (GCC would call it otherwise, and reload the batch's
 // state per segment).
 template <bool kXMajor, int kMajorS, bool kStamped, bool kSettle>
@@ -238,21 +243,25 @@ __attribute__((always_inline)) inline void TiledGrid::WalkSegment(CellSegment s,
     WalkInOneTile<kXMajor, kMajorS, kStamped, kSettle>(s, l, stamp, st);
     return;
   }
-  const CellIndex a = s.from, b = s.to;
+  const CellIndex a = s.from, b = s.to;  // in different tiles: at least one step
   const std::int32_t dx = b.x >= a.x ? b.x - a.x : a.x - b.x, dy = b.y >= a.y ? b.y - a.y : a.y - b.y;
   const std::int32_t major_n = kXMajor ? dx : dy, minor_n = kXMajor ? dy : dx;
   // The major axis's direction (kMajorS) is a template argument: one register less in the run.
   const std::int32_t major_s = kMajorS;
   const std::int32_t minor_s = kXMajor ? (b.y >= a.y ? 1 : -1) : (b.x >= a.x ? 1 : -1);
-  std::int32_t g = 2 * minor_n - major_n;
-  std::int32_t major = kXMajor ? a.x : a.y, minor = kXMajor ? a.y : a.x;  // global cells
-  std::int32_t left = major_n;  // every step moves the major axis; b excluded
+  std::int32_t g = 2 * minor_n - major_n, left = major_n;  // every step moves the major axis; b excluded
   const std::int32_t two_major = 2 * major_n, two_minor = 2 * minor_n;
   // A step's move of the index in a tile: 1 along x, 32 along y.
   const std::int32_t major_step = kXMajor ? major_s : 32 * major_s, minor_step = kXMajor ? 32 * minor_s : minor_s;
-  while (left > 0) {
-    const std::int32_t x = kXMajor ? major : minor, y = kXMajor ? minor : major;
-    const std::int32_t tx = (x >> 5) - origin_tile_.x, ty = (y >> 5) - origin_tile_.y;
+  // The walk's place: its tile's slot coordinates, `cell` its index in the tile, the major axis's
+  // steps to the tile's edge (n >= 1) and the minor axis's moves left in the tile.
+  std::int32_t tx = (a.x >> 5) - origin_tile_.x, ty = (a.y >> 5) - origin_tile_.y;
+  std::int32_t &major_tile = kXMajor ? tx : ty, &minor_tile = kXMajor ? ty : tx;
+  const std::int32_t start = (kXMajor ? a.x : a.y) & 31, lminor = (kXMajor ? a.y : a.x) & 31;
+  std::ptrdiff_t cell = ((a.y & 31) << 5) | (a.x & 31);
+  std::int32_t to_edge = major_s > 0 ? 32 - start : start + 1;
+  std::int32_t room = minor_s > 0 ? 31 - lminor : lminor;
+  for (;;) {
     if (static_cast<std::uint32_t>(tx) >= static_cast<std::uint32_t>(tiles_x_) ||
         static_cast<std::uint32_t>(ty) >= static_cast<std::uint32_t>(tiles_y_)) {
       ++st->out_of_box;  // the box is convex: the ray never comes back
@@ -263,17 +272,9 @@ __attribute__((always_inline)) inline void TiledGrid::WalkSegment(CellSegment s,
       for (std::uint32_t& word : tile->updated) word = 0;
       tile->stamp = stamp;
     }
-    // The run: tile-local, `cell` is the index in the tile; it ends at the tile edge along the
-    // major axis (n >= 1 steps) or when the minor axis has used up its `room` in the tile.
-    const std::int32_t major_base = major & ~31, minor_base = minor & ~31;
-    const std::int32_t start = major & 31, lminor = minor & 31;
-    const std::int32_t room0 = minor_s > 0 ? 31 - lminor : lminor;
-    std::int32_t room = room0;
-    std::ptrdiff_t cell = kXMajor ? (lminor << 5) | start : (start << 5) | lminor;
-    const std::int32_t to_edge = major_s > 0 ? 32 - start : start + 1;
+    // The run ends at the tile edge along the major axis or when the minor axis has used up its
+    // `room`. Compiled with and without a tile (pool full: cells only counted): no test per cell.
     const std::int32_t n = left < to_edge ? left : to_edge;
-    // The run's loop is compiled twice, with and without a tile (pool full: the cells are only
-    // counted), so that the test is not made per cell.
     const auto run = [&](auto has_tile) {
       std::int32_t k = n;
       do {
@@ -294,15 +295,22 @@ __attribute__((always_inline)) inline void TiledGrid::WalkSegment(CellSegment s,
     };
     const std::int32_t k = tile != nullptr ? run(std::true_type{}) : run(std::false_type{});
     const std::int32_t walked = n - k;
-    const std::int32_t lmajor = start + walked * major_s;
     left -= walked;
-    if (tile != nullptr) {
-      st->applied += walked;
-    } else {
-      st->dropped_pool_full += walked;  // nothing is freed while a scan is inserted: no retry
+    // A full pool frees nothing while a scan is inserted: no retry.
+    (tile != nullptr ? st->applied : st->dropped_pool_full) += walked;
+    if (left == 0) return;
+    // Into the next tile along the axis (or both) that left this one: the index wraps on that axis.
+    if (room < 0) {
+      minor_tile += minor_s;
+      cell -= 32 * minor_step;
+      room = 31;
     }
-    major = major_base + lmajor;
-    minor = minor_base + lminor + (room0 - room) * minor_s;
+    to_edge -= walked;
+    if (to_edge == 0) {
+      major_tile += major_s;
+      cell -= 32 * major_step;
+      to_edge = 32;
+    }
   }
 }
 

@@ -13,8 +13,12 @@ namespace {
 
 constexpr float kDegToRad = dpcr::kPi / 180.0f;
 
-// ' ', or one of '\t' '\n' '\v' '\f' '\r' (9-13, contiguous): isspace in the "C" locale.
-bool IsSpace(char c) { return c == ' ' || static_cast<unsigned char>(c - '\t') <= static_cast<unsigned char>('\r' - '\t'); }
+// ' ', or one of '\t' '\n' '\v' '\f' '\r' (9-13, contiguous): isspace in the "C" locale. A word's
+// characters (digits, letters, '.', '-') lie above ' ': one comparison rules them out.
+bool IsSpace(char c) {
+  const auto u = static_cast<unsigned char>(c);
+  return u <= ' ' && (u == ' ' || static_cast<unsigned char>(u - '\t') <= static_cast<unsigned char>('\r' - '\t'));
+}
 
 // Clinger's fast path: a plain decimal of at most 15 digits ("1.23", "-0.004", "17") is an exact
 // integer over an exact power of ten, and one IEEE division rounds the quotient correctly: the
