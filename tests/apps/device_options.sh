@@ -15,6 +15,7 @@ grep -q '"ticks_per_rev": 4096' "$T/dev/device.json" || fail "device.json: ticks
 "$REPLAY" --uart "$T/dev/lidar.uart" --candump "$T/dev/wheels.log" --out "$T/r" 2> /dev/null || fail "dpcr-replay --uart"
 grep -q "\"description\": \"$T/dev/device.json\"" "$T/r/metrics.json" || fail "replay did not read device.json"
 grep -q '"angle_sign": 1.0' "$T/r/metrics.json" || fail "replay: angle sign not from device.json"
+grep -q '"lidar_range_noise_m": 0.02' "$T/r/metrics.json" || fail "replay: the LD06's range noise not declared"
 "$REPLAY" --uart "$T/dev/lidar.uart" --candump "$T/dev/wheels.log" --out "$T/r2" --max-range 5 --laser-offset 0.02 2> /dev/null ||
   fail "dpcr-replay --uart --max-range"
 grep -q '"max_range_m": 5.0' "$T/r2/metrics.json" || fail "--max-range ignored with --uart"
