@@ -363,7 +363,7 @@ int main(int argc, char** argv) {
   app.add_option("--drop-behind", opt.drop_behind_cells, "drop returns 2 to N cells behind a settled wall along their ray "
                  "(range noise through the wall; GridConfig::drop_hits_behind_settled_cells, 0: none)")->check(CLI::Range(0, 255));
   app.add_option("--lidar-noise", opt.lidar_noise, "range noise of the simulated lidar: sigma = BASE + FRACTION x range "
-                 "(metres, fraction; default: the model's, 0.01,0.005); 0,0: exact ranges")
+                 "(metres, fraction; default: the model's, ld06 0.01,0.005, xv11 0.01,0.01); 0,0: exact ranges")
       ->expected(2)->delimiter(',')->check(CLI::Range(0.0, 1.0));
   app.add_flag("--ideal-wheels", opt.ideal_wheels, "wheel odometry without calibration error or slips (ticks still quantise)");
   CLI11_PARSE(app, argc, argv);
