@@ -50,12 +50,17 @@ Span<std::int16_t> TiledGrid::RestoreTile(int tx, int ty) {
 
 namespace {
 
-// Marks `offset` as updated in scan `stamp`; false if it already was.
-bool MarkOnce(Tile* tile, int offset, std::uint32_t stamp) {
+// The tile's "updated" bits belong to the scan `stamp`: cleared when it is a new one.
+inline void ClaimForScan(Tile* tile, std::uint32_t stamp) {
   if (tile->stamp != stamp) {
     for (std::uint32_t& word : tile->updated) word = 0;
     tile->stamp = stamp;
   }
+}
+
+// Marks `offset` as updated in scan `stamp`; false if it already was.
+bool MarkOnce(Tile* tile, int offset, std::uint32_t stamp) {
+  ClaimForScan(tile, stamp);
   std::uint32_t& word = tile->updated[offset >> 5];
   const std::uint32_t bit = 1u << (offset & 31);
   if ((word & bit) != 0) return false;
@@ -198,10 +203,7 @@ __attribute__((always_inline)) inline void TiledGrid::WalkInOneTile(CellSegment 
     st->dropped_pool_full += major_n;
     return;
   }
-  if (kStamped && tile->stamp != stamp) {
-    for (std::uint32_t& word : tile->updated) word = 0;
-    tile->stamp = stamp;
-  }
+  if (kStamped) ClaimForScan(tile, stamp);
   const std::int32_t minor_s = kXMajor ? (b.y >= a.y ? 1 : -1) : (b.x >= a.x ? 1 : -1);
   const std::int32_t major_step = kXMajor ? kMajorS : 32 * kMajorS, minor_step = kXMajor ? 32 * minor_s : minor_s;
   const std::int32_t two_major = 2 * major_n, two_minor = 2 * minor_n;
@@ -268,10 +270,7 @@ __attribute__((always_inline)) inline void TiledGrid::WalkSegment(CellSegment s,
       return;
     }
     Tile* tile = TileForWrite(ty * tiles_x_ + tx);
-    if (kStamped && tile != nullptr && tile->stamp != stamp) {
-      for (std::uint32_t& word : tile->updated) word = 0;
-      tile->stamp = stamp;
-    }
+    if (kStamped && tile != nullptr) ClaimForScan(tile, stamp);
     // The run ends at the tile edge along the major axis or when the minor axis has used up its
     // `room`. Compiled with and without a tile (pool full: cells only counted): no test per cell.
     const std::int32_t n = left < to_edge ? left : to_edge;
