@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "core/base/assert.hpp"
+#include "core/base/float4.hpp"
+#include "core/geometry/points4.hpp"
 
 namespace dpcr {
 namespace {
@@ -79,6 +81,17 @@ class WallScreen {
 // Marks a dropped hit in the scratch cells: outside every grid's box.
 constexpr CellIndex kDroppedHit{INT32_MIN, INT32_MIN};
 
+// Rays are set up four at a time (core/geometry/points4.hpp: lane by lane the scalar code's
+// operations, so the same cells). CellOf lane by lane:
+struct Cells4 {
+  Int4 x;
+  Int4 y;
+  CellIndex operator[](int lane) const { return CellIndex{x[lane], y[lane]}; }
+};
+Cells4 CellsOf4(Float4 x_m, Float4 y_m, float resolution_m) {
+  return Cells4{FloorToInt4(x_m / resolution_m), FloorToInt4(y_m / resolution_m)};
+}
+
 }  // namespace
 
 InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hits, Span<const Point2> free_ends,
@@ -94,11 +107,14 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
   const bool screen = grid.settle_at_bounds() && config.drop_hits_behind_settled_cells > 1;
   const WallScreen walls(grid, origin, config);
   int dropped = 0;
-  for (std::size_t i = 0; i < hits.size(); ++i) {
-    const CellIndex cell = CellOf(hits[i].x, hits[i].y, res);
-    const bool behind = screen && walls.Behind(hits[i], cell);
-    scratch[i] = behind ? kDroppedHit : cell;
-    dropped += behind ? 1 : 0;
+  for (std::size_t i = 0; i < hits.size(); i += 4) {
+    const Points4 p = LoadPoints4(hits, i);
+    const Cells4 cells = CellsOf4(p.x, p.y, res);
+    for (int lane = 0, n = LanesAt(i, hits.size()); lane < n; ++lane) {
+      const bool behind = screen && walls.Behind(hits[i + lane], cells[lane]);
+      scratch[i + lane] = behind ? kDroppedHit : cells[lane];
+      dropped += behind ? 1 : 0;
+    }
   }
   const TiledGrid::SegmentStats h = grid.UpdateCells(Span<const CellIndex>(scratch.data(), hits.size()), config.hit_delta,
                                                      config.clamp_min, config.clamp_max, stamp);
@@ -120,33 +136,40 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
   const float margin2 = config.hit_margin_m * config.hit_margin_m;
   // The cells a ray to hit p clears: from `start` (or miss_range_m before the hit) up to
   // hit_margin_m before it; none when the hit is within the margin.
-  for (std::size_t i = 0; i < hits.size(); ++i) {
-    if (scratch[i] == kDroppedHit) continue;
-    const Point2& p = hits[i];
-    const float dx = p.x - origin.x, dy = p.y - origin.y;
-    const float d2 = dx * dx + dy * dy;
-    if (d2 <= margin2) continue;
-    const float d = std::sqrt(d2);
-    const float end_k = 1.0f - config.hit_margin_m / d;
-    const CellIndex to = config.hit_margin_m > 0.0f ? CellOf(origin.x + end_k * dx, origin.y + end_k * dy, res)
-                                                    : CellOf(p.x, p.y, res);  // exactly the hit's cell
-    CellIndex from = start;
-    float from_d = d;  // how far before the hit the segment starts
-    if (miss_range_m > 0.0f && d2 > range2) {
-      // Start miss_range_m before the hit (a cell of the full ray's neighbourhood, not always on it).
-      const float k = 1.0f - miss_range_m / d;
-      from = CellOf(origin.x + k * dx, origin.y + k * dy, res);
-      from_d = miss_range_m;
-    }
-    if (!split) {
-      strong.Queue(from, to);
-    } else if (from_d <= config.unsettle_miss_margin_m) {
-      weak.Queue(from, to);
-    } else {
-      const float k = 1.0f - config.unsettle_miss_margin_m / d;
-      const CellIndex mid = CellOf(origin.x + k * dx, origin.y + k * dy, res);
-      strong.Queue(from, mid);
-      weak.Queue(mid, to);
+  // Four rays at a time: both candidate ends of each (a lane whose ray clears nothing, or that
+  // starts at `start`, has its cells computed and unused; a hit on the origin gives NaN there).
+  for (std::size_t i = 0; i < hits.size(); i += 4) {
+    const Points4 p = LoadPoints4(hits, i);
+    const Float4 dx4 = p.x - origin.x, dy4 = p.y - origin.y;
+    const Float4 d2_4 = dx4 * dx4 + dy4 * dy4;
+    const Float4 d4 = Sqrt4(d2_4);
+    const Float4 end_k = 1.0f - config.hit_margin_m / d4;
+    const Cells4 ends = CellsOf4(origin.x + end_k * dx4, origin.y + end_k * dy4, res);
+    // Start miss_range_m before the hit (a cell of the full ray's neighbourhood, not always on it).
+    const Float4 start_k = 1.0f - miss_range_m / d4;
+    const Cells4 starts = CellsOf4(origin.x + start_k * dx4, origin.y + start_k * dy4, res);
+    for (int lane = 0, n = LanesAt(i, hits.size()); lane < n; ++lane) {
+      if (scratch[i + lane] == kDroppedHit) continue;
+      const float d2 = d2_4[lane];
+      if (d2 <= margin2) continue;
+      const CellIndex to = config.hit_margin_m > 0.0f ? ends[lane] : scratch[i + lane];  // exactly the hit's cell
+      CellIndex from = start;
+      float from_d = d4[lane];  // how far before the hit the segment starts
+      if (miss_range_m > 0.0f && d2 > range2) {
+        from = starts[lane];
+        from_d = miss_range_m;
+      }
+      if (!split) {
+        strong.Queue(from, to);
+      } else if (from_d <= config.unsettle_miss_margin_m) {
+        weak.Queue(from, to);
+      } else {
+        const float dx = dx4[lane], dy = dy4[lane];
+        const float k = 1.0f - config.unsettle_miss_margin_m / d4[lane];
+        const CellIndex mid = CellOf(origin.x + k * dx, origin.y + k * dy, res);
+        strong.Queue(from, mid);
+        weak.Queue(mid, to);
+      }
     }
   }
   for (const Point2& p : free_ends) strong.Queue(start, CellOf(p.x, p.y, res));
