@@ -58,14 +58,19 @@ inline void ClaimForScan(Tile* tile, std::uint32_t stamp) {
   }
 }
 
-// Marks `offset` as updated in scan `stamp`; false if it already was.
-bool MarkOnce(Tile* tile, int offset, std::uint32_t stamp) {
-  ClaimForScan(tile, stamp);
+// Marks `offset` as updated in the scan the tile is claimed for; false if it already was.
+inline bool MarkClaimed(Tile* tile, int offset) {
   std::uint32_t& word = tile->updated[offset >> 5];
   const std::uint32_t bit = 1u << (offset & 31);
   if ((word & bit) != 0) return false;
   word |= bit;
   return true;
+}
+
+// Marks `offset` as updated in scan `stamp`; false if it already was.
+bool MarkOnce(Tile* tile, int offset, std::uint32_t stamp) {
+  ClaimForScan(tile, stamp);
+  return MarkClaimed(tile, offset);
 }
 
 }  // namespace
@@ -314,8 +319,11 @@ __attribute__((always_inline)) inline void TiledGrid::WalkSegment(CellSegment s,
 }
 
 template <bool kStamped, bool kSettle>
-TiledGrid::SegmentStats TiledGrid::WalkSegments(Span<const CellSegment> segments, const Learning& l,
+TiledGrid::SegmentStats TiledGrid::WalkSegments(Span<const CellSegment> segments, const Learning& learning,
                                                 std::uint32_t stamp) {
+  // A local copy: the walk's stores to a tile's updated bits (uint32) could alias the caller's
+  // int32 fields, and would make the compiler reload them for every cell.
+  const Learning l = learning;
   SegmentStats st;
   for (const CellSegment& s : segments) {
     const std::int32_t dx = s.to.x >= s.from.x ? s.to.x - s.from.x : s.from.x - s.to.x;
@@ -370,10 +378,11 @@ TiledGrid::SegmentStats TiledGrid::UpdateCells(Span<const CellIndex> cells, std:
     if (slot != last_slot) {
       tile = TileForWrite(slot);
       last_slot = tile != nullptr ? slot : -1;  // a full pool is asked again, as before
+      if (tile != nullptr) ClaimForScan(tile, stamp);  // once per tile looked up, not per hit
     }
     if (tile == nullptr) {
       ++st.dropped_pool_full;
-    } else if (MarkOnce(tile, offset, stamp)) {
+    } else if (MarkClaimed(tile, offset)) {
       ApplyDelta(&tile->cells[offset], l, settle_at_bounds_);
       ++st.applied;
     }
