@@ -92,6 +92,25 @@ Cells4 CellsOf4(Float4 x_m, Float4 y_m, float resolution_m) {
   return Cells4{FloorToInt4(x_m / resolution_m), FloorToInt4(y_m / resolution_m)};
 }
 
+// Each hit's cell into scratch[i], kDroppedHit for a hit behind a settled wall when the grid
+// drops those (GridConfig::drop_hits_behind_settled_cells); returns how many were dropped.
+int HitCells(const TiledGrid& grid, Point2 origin, Span<const Point2> hits, const GridConfig& config,
+             Span<CellIndex> scratch) {
+  const bool screen = grid.settle_at_bounds() && config.drop_hits_behind_settled_cells > 1;
+  const WallScreen walls(grid, origin, config);
+  int dropped = 0;
+  for (std::size_t i = 0; i < hits.size(); i += 4) {
+    const Points4 p = LoadPoints4(hits, i);
+    const Cells4 cells = CellsOf4(p.x, p.y, config.resolution_m);
+    for (int lane = 0, n = LanesAt(i, hits.size()); lane < n; ++lane) {
+      const bool behind = screen && walls.Behind(hits[i + lane], cells[lane]);
+      scratch[i + lane] = behind ? kDroppedHit : cells[lane];
+      dropped += behind ? 1 : 0;
+    }
+  }
+  return dropped;
+}
+
 }  // namespace
 
 InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hits, Span<const Point2> free_ends,
@@ -103,19 +122,7 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
 
   // 1. The hits, each distinct cell once. They are marked as updated in this scan, so no ray of
   // this scan can clear them (a miss would be skipped as a repeat).
-  // Hits behind a settled wall are dropped (GridConfig::drop_hits_behind_settled_cells).
-  const bool screen = grid.settle_at_bounds() && config.drop_hits_behind_settled_cells > 1;
-  const WallScreen walls(grid, origin, config);
-  int dropped = 0;
-  for (std::size_t i = 0; i < hits.size(); i += 4) {
-    const Points4 p = LoadPoints4(hits, i);
-    const Cells4 cells = CellsOf4(p.x, p.y, res);
-    for (int lane = 0, n = LanesAt(i, hits.size()); lane < n; ++lane) {
-      const bool behind = screen && walls.Behind(hits[i + lane], cells[lane]);
-      scratch[i + lane] = behind ? kDroppedHit : cells[lane];
-      dropped += behind ? 1 : 0;
-    }
-  }
+  const int dropped = HitCells(grid, origin, hits, config, scratch);
   const TiledGrid::SegmentStats h = grid.UpdateCells(Span<const CellIndex>(scratch.data(), hits.size()), config.hit_delta,
                                                      config.clamp_min, config.clamp_max, stamp);
   stats.hit_cells = h.applied;
