@@ -22,10 +22,10 @@ Eigen::Matrix3f IntoErrorFrame(const Eigen::Matrix3f& information, const Pose2& 
 
 }  // namespace
 
-void BackEnd::Init(const BackEndConfig& config, float region_width_m, std::int16_t obstacle_threshold) {
+void BackEnd::Init(const BackEndConfig& config, float region_width_m, const ReferenceConfig& reference) {
   config_ = config;
   region_width_m_ = region_width_m;
-  obstacle_threshold_ = obstacle_threshold;
+  reference_ = reference;
   counters_ = BackEndCounters{};
   s_.graph->Clear();
   job_head_ = job_count_ = 0;
@@ -108,10 +108,8 @@ BackEnd::StepResult BackEnd::Step(Span<RegionalMap> regions) {
 }
 
 void BackEnd::BuildReference(const RegionalMap& map) {
-  ReferenceConfig reference;
-  reference.obstacle_threshold = obstacle_threshold_;
   ReferenceBuildStats stats;
-  (void)s_.reference->Build(*map.grid, map.grid->box(), reference, &stats);
+  (void)s_.reference->Build(*map.grid, map.grid->box(), reference_, &stats);
 }
 
 Eigen::Matrix3f BackEnd::RegistrationInformation(const Eigen::Matrix3f& hessian, const Pose2& measurement) const {
@@ -127,9 +125,9 @@ bool BackEnd::MatchMaps(Span<RegionalMap> regions, int older, int newer) {
   const RegionalMap& ref = regions[static_cast<std::size_t>(older)];
   const RegionalMap& target = regions[static_cast<std::size_t>(newer)];
   ++counters_.map_match_attempts;
-  const std::size_t ref_cells = CountObstacleCells(*ref.grid, obstacle_threshold_);
-  const std::size_t target_cells = CountObstacleCells(*target.grid, obstacle_threshold_);
-  const std::size_t n = CollectObstacleCloud(*target.grid, obstacle_threshold_, target_cells,
+  const std::size_t ref_cells = CountObstacleCells(*ref.grid, reference_.obstacle_threshold);
+  const std::size_t target_cells = CountObstacleCells(*target.grid, reference_.obstacle_threshold);
+  const std::size_t n = CollectObstacleCloud(*target.grid, reference_.obstacle_threshold, target_cells,
                                              Span<Point2>(s_.cloud.data(), static_cast<std::size_t>(config_.max_cloud_points)));
   if (n < 20 || ref_cells < 20) return false;
   BuildReference(ref);
@@ -182,7 +180,7 @@ bool BackEnd::BeginLoopClosure(Span<RegionalMap> regions, int region, int from, 
   // Where is the submap in the map? A search over the window the drift allows, on a grid in
   // memory lent by the region reference until the search is done.
   s_.match_grid->Attach(s_.reference->LendTable());
-  s_.match_grid->Build(*map.grid, map.grid->box(), config_.match_grid_coarsen, obstacle_threshold_);
+  s_.match_grid->Build(*map.grid, map.grid->box(), config_.match_grid_coarsen, reference_.obstacle_threshold);
   const std::size_t stride = (cloud.size() + static_cast<std::size_t>(config_.search_points) - 1) /
                              static_cast<std::size_t>(config_.search_points);
   std::size_t n = 0;

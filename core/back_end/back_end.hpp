@@ -83,7 +83,9 @@ class BackEnd {
   BackEnd(const BackEnd&) = delete;
   BackEnd& operator=(const BackEnd&) = delete;
 
-  void Init(const BackEndConfig& config, float region_width_m, std::int16_t obstacle_threshold);
+  // `reference`: how the regional maps become registration references (the front end's, for the
+  // lidar's noise: ReferenceForNoise); its obstacle threshold also picks the maps' obstacle cells.
+  void Init(const BackEndConfig& config, float region_width_m, const ReferenceConfig& reference);
 
   // A region was created (index == its vertex); `from` is the region the robot came from (-1 for
   // the first). Adds the vertex and the chain edge.
@@ -142,7 +144,7 @@ class BackEnd {
   BackEndStorage s_;
   BackEndConfig config_;
   float region_width_m_ = 4.0f;
-  std::int16_t obstacle_threshold_ = 3000;
+  ReferenceConfig reference_;  // set by Init
   BackEndCounters counters_;
   ClosureTrace trace_;
   // The loop-closure search under way: its region, the anchor map, the submap's world pose when it

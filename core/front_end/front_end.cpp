@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/front_end/reference_for_noise.hpp"
 #include "core/grid/ray_caster.hpp"
 
 namespace dpcr {
@@ -33,7 +34,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   InvalidateRegionReference();
   scans_since_submap_lines_ = scans_since_second_ = second_registrations_since_region_lines_ = 0;
   scan_marker_.Reset();
-  back_end_.Init(config.back_end, config.front_end.region_width_m, config.front_end.region_reference.obstacle_threshold);
+  back_end_.Init(config.back_end, config.front_end.region_width_m, ReferenceForNoise(config.front_end.region_reference, config));
   path_m_ = 0.0f;
   last_world_ = Pose2::Identity();
   last_scan_region_ = -1;
@@ -393,7 +394,7 @@ void FrontEnd::RebuildSubmapReferenceIfDue() {
       fe_counters_.submap_line_builds == 0) {
     // A young submap cannot reach the threshold: ask for a hit in half the scans it holds so far
     // (not in all of them: a low-cost lidar returns only 40-80 % of its beams).
-    ReferenceConfig reference = f.submap_reference;
+    ReferenceConfig reference = ReferenceForNoise(f.submap_reference, config_);
     const int reachable = (s_.submap->size() + 1) / 2 * config_.grid.hit_delta - 1;
     if (reachable < reference.obstacle_threshold) reference.obstacle_threshold = static_cast<std::int16_t>(reachable);
     // Lowered to one hit only behind wheels: without them a weak match more likely means a
@@ -620,13 +621,14 @@ void FrontEnd::BuildRegionReference(const int (&maps)[2], int n) {
   const RegionalMap& r = regions_[maps[0]];
   const float res = r.grid->resolution_m();
   RegistrationReference& reference = *s_.region_reference;
+  const ReferenceConfig config = ReferenceForNoise(config_.front_end.region_reference, config_);
   ReferenceBuildStats stats;
   reference.BeginBuild(r.grid->box(), res);
   for (int k = 0; k < n; ++k) {
     const RegionalMap& m = regions_[maps[k]];
-    reference.AddPlacedGrid(*m.grid, Between(r.anchor, m.anchor), config_.front_end.region_reference, &stats);
+    reference.AddPlacedGrid(*m.grid, Between(r.anchor, m.anchor), config, &stats);
   }
-  if (reference.FinishBuild(config_.front_end.region_reference, &stats) != Status::kOk) {
+  if (reference.FinishBuild(config, &stats) != Status::kOk) {
     fe_counters_.reference_cells_dropped += static_cast<std::uint32_t>(stats.dropped_cells);
   }
 }

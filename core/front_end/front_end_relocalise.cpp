@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "core/front_end/reference_for_noise.hpp"
+
 namespace dpcr {
 
 bool FrontEnd::LostNow() {
@@ -106,7 +108,7 @@ void FrontEnd::StepRelocalisation(std::size_t hits) {
   }
   GlobalFix fix;
   const Status st = localiser_.Step(s_.back_end, Span<const RegionalMap>(regions_.maps().data(), regions_.maps().size()), config_.front_end.region_width_m,
-                                    config_.front_end.region_reference, config_.localisation, config_.back_end, &fix);
+                                    ReferenceForNoise(config_.front_end.region_reference, config_), config_.localisation, config_.back_end, &fix);
   // The search used the regional reference (its table, then a build).
   InvalidateRegionReference();
   if (st == Status::kOk && TakeFix(fix)) ResumeAt(fix);

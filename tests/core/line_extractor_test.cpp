@@ -1,18 +1,30 @@
 // Line features from synthetic int16 grids: rooms, noisy walls, gaps, corners, short furniture.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/capacity.hpp"
+#include "core/config.hpp"
+#include "core/front_end/reference_for_noise.hpp"
 #include "registration_fixtures.hpp"
 
 using dpcr::Point2;
 using dpcr_test::GridFixture;
+using dpcr_test::InsertScan;
+using dpcr_test::SimulateScan;
 using dpcr_test::Segment;
 
 namespace {
 
 float Dist(Point2 a, Point2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+float DistanceToSegment(Point2 p, Segment s) {
+  const float ex = s.b.x - s.a.x, ey = s.b.y - s.a.y;
+  const float t = std::clamp(((p.x - s.a.x) * ex + (p.y - s.a.y) * ey) / (ex * ex + ey * ey), 0.0f, 1.0f);
+  return Dist(p, Point2{s.a.x + t * ex, s.a.y + t * ey});
+}
 
 // The extracted line matching a true segment with both endpoints within `tol` metres, or -1.
 int FindLine(const dpcr::RegistrationReference& ref, Segment s, float tol) {
@@ -176,4 +188,64 @@ TEST_CASE("Line fits weight cells by their evidence: stray weak cells barely til
   CHECK(weighted_tilt < 0.2f * plain_tilt);
   CHECK(weighted_offset_error < 0.2f * plain_offset_error);
   CHECK(weighted_offset_error < 0.002f);
+}
+
+namespace {
+
+// The share of the obstacle cells that belong to some line.
+float LinedShare(const dpcr::RegistrationReference& ref) {
+  int lined = 0;
+  for (std::uint16_t i = 0; i < ref.cell_count(); ++i) lined += ref.cell(i).line != dpcr::kNoLine ? 1 : 0;
+  return ref.cell_count() == 0 ? 0.0f : static_cast<float>(lined) / static_cast<float>(ref.cell_count());
+}
+
+}  // namespace
+
+TEST_CASE("The line fit tolerance grows with the lidar's declared range noise, and only then") {
+  dpcr::MapperConfig config;
+  const dpcr::ReferenceConfig base = config.front_end.region_reference;
+  CHECK(dpcr::ReferenceForNoise(base, config).lines.max_rms_cells == base.lines.max_rms_cells);  // not known
+  config.lidar.range_noise_m = 0.025f;  // an LD06 at 3 m
+  const float ld06 = dpcr::ReferenceForNoise(base, config).lines.max_rms_cells;
+  CHECK(ld06 == Approx(1.0f).margin(0.01f));
+  config.lidar.range_noise_m = 0.04f;  // an XV-11
+  CHECK(dpcr::ReferenceForNoise(base, config).lines.max_rms_cells == Approx(1.30f).margin(0.01f));
+  // The rest of the settings are kept.
+  CHECK(dpcr::ReferenceForNoise(base, config).obstacle_threshold == base.obstacle_threshold);
+}
+
+TEST_CASE("Walls mapped from a low-cost lidar's noisy returns are lines with the noise-aware tolerance, clutter without") {
+  // A room mapped as the regional maps are: noisy scans from poses around it through the ray
+  // inserter, its walls a band of cells three to four thick. The range sigma is an XV-11's (4 cm),
+  // an LD06's far walls' (1 cm + 0.5 % of 6 m); at an LD06's 2.5 cm both tolerances fit these walls.
+  GridFixture f;
+  const Point2 c0{1.02f, 1.03f}, c1{6.01f, 1.53f}, c2{5.51f, 5.02f}, c3{0.52f, 4.02f};
+  const std::vector<Segment> walls = {{c0, c1}, {c1, c2}, {c2, c3}, {c3, c0}};
+  constexpr float kNoise = 0.04f;
+  std::uint32_t stamp = 1;
+  for (int k = 0; k < 200; ++k) {
+    const float t = static_cast<float>(k) * 0.37f;
+    const dpcr::Pose2 pose{3.2f + 1.2f * std::cos(t), 3.0f + 0.9f * std::sin(1.3f * t), 0.1f * t};
+    InsertScan(f, SimulateScan(walls, pose, 450, kNoise, stamp), pose, stamp);
+    ++stamp;
+  }
+  dpcr::MapperConfig config;
+  config.lidar.range_noise_m = kNoise;
+  const dpcr::ReferenceConfig clean = config.front_end.region_reference;
+  REQUIRE(f.Build(nullptr, clean) == dpcr::Status::kOk);
+  const float clean_share = LinedShare(*f.ref);
+  REQUIRE(f.Build(nullptr, dpcr::ReferenceForNoise(clean, config)) == dpcr::Status::kOk);
+  const float noisy_share = LinedShare(*f.ref);
+  INFO("cells in lines: clean tolerance " << clean_share << ", noise-aware " << noisy_share << " of " << f.ref->cell_count());
+  CHECK(clean_share < 0.6f);
+  CHECK(noisy_share >= 0.9f);
+  // They are pieces of the true walls (a noisy wall is split at its outliers): each one's middle
+  // lies within two cells of a wall.
+  for (std::uint16_t i = 0; i < f.ref->line_count(); ++i) {
+    const dpcr::LineFeature& l = f.ref->line(i);
+    const Point2 mid{0.5f * (l.a.x + l.b.x), 0.5f * (l.a.y + l.b.y)};
+    float nearest = 1e9f;
+    for (const Segment& w : walls) nearest = std::min(nearest, DistanceToSegment(mid, w));
+    CHECK(nearest <= 2.0f * kCell);
+  }
 }
