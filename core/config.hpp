@@ -87,7 +87,11 @@ constexpr ReferenceConfig ReferenceWithThreshold(std::int16_t obstacle_threshold
 struct FrontEndConfig {
   int submap_scans = 20;          // N: scans fused into the submap
   int submap_line_period = 10;    // K1: re-extract submap lines every K1 scans
-  int region_line_period = 50;    // K2: re-extract regional-map lines every K2 scans
+  // K2: re-extract regional-map lines every K2 scans (the paper: 50). Lines re-extracted from cells
+  // the robot has just written let a map turn with its heading drift; with lines that fit a noisy
+  // lidar's walls (ReferenceForNoise), 100 is better on every world and log measured
+  // (docs/front-end-accuracy.md, "Registration periods and prior").
+  int region_line_period = 100;
   int second_registration_period = 5;  // Ks: submap -> regional map every Ks scans
   // Misses a submap scan applies: only the last this-many metres of each ray before its hit
   // (0 = the whole ray). The submap serves registration, which needs hits and the free space
