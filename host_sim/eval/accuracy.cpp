@@ -102,12 +102,15 @@ AccuracyResult EvaluateAgainstGroundTruth(const Trajectory& estimate, const Traj
   }
   const double th = std::atan2(sxy, sxx), c = std::cos(th), s = std::sin(th);
   double sq = 0.0;
+  std::vector<double> rigid_errors;
   for (const auto& [e, g] : pairs) {
     const double ex = e.x - me.x, ey = e.y - me.y;
     const double dx = c * ex - s * ey + mg.x - g.x, dy = s * ex + c * ey + mg.y - g.y;
     sq += dx * dx + dy * dy;
+    rigid_errors.push_back(std::hypot(dx, dy));
   }
   r.ate_rmse_m = std::sqrt(sq / n);
+  r.rigid_loc_err_ave_m = MeanOfLargestTenth(rigid_errors);
   return r;
 }
 

@@ -3,6 +3,9 @@
 //    aligned to the ground truth at the start pose; the mean of the largest 10 % of the
 //    position errors. max_err_m is the largest of those errors.
 //  - ATE RMSE: the RMS position error after the least-squares rigid alignment (Horn/Umeyama in 2D).
+//  - rigid_loc_err_ave_m: LocErr_ave's statistic on the errors after that alignment instead of the
+//    start pose's. A diagnostic, not the paper's figure: the difference is what the start pose's
+//    own error (its heading against the map built after it) carries to the far end of the run.
 //  - Relations (Kümmerle et al. 2009): for each relation (t1, t2, Z), the error of the estimated
 //    relative pose Between(x(t1), x(t2)) against Z: mean and std of |translation| (m) and |angle| (deg).
 #pragma once
@@ -20,6 +23,7 @@ struct AccuracyResult {
   std::size_t unmatched = 0;  // samples with no ground truth within the tolerance
   double loc_err_ave_m = 0.0;
   double ate_rmse_m = 0.0;
+  double rigid_loc_err_ave_m = 0.0;
   double max_err_m = 0.0;
 };
 

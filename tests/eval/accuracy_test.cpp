@@ -37,6 +37,20 @@ TEST_CASE("Errors are measured after aligning the start pose") {
   REQUIRE(a.ate_rmse_m < a.max_err_m);                   // best-fit alignment does better
 }
 
+TEST_CASE("The rigid-aligned LocErr_ave leaves out the start pose's heading error") {
+  // Every position right, but the first pose's heading 0.2 deg off: the start alignment turns the
+  // whole run about the start, the least-squares alignment does not.
+  Trajectory gt, est;
+  const float heading_error = 0.2f * dpcr::kPi / 180.0f;
+  for (int i = 0; i < 10; ++i) {
+    gt.push_back({i * 1000000LL, Pose2{static_cast<float>(i), 0.0f, 0.0f}});
+    est.push_back({i * 1000000LL, Pose2{static_cast<float>(i), 0.0f, i == 0 ? heading_error : 0.0f}});
+  }
+  const auto a = dpcr::eval::EvaluateAgainstGroundTruth(est, gt, 1.0);
+  REQUIRE(a.loc_err_ave_m == Approx(9.0 * std::sin(heading_error)).margin(1e-5));  // 3.1 cm at 9 m
+  REQUIRE(a.rigid_loc_err_ave_m == Approx(0.0).margin(1e-5));
+}
+
 TEST_CASE("Sampling period and unmatched stamps are honoured") {
   Trajectory gt{{0, Pose2{}}, {500000, Pose2{}}, {1000000, Pose2{}}};
   Trajectory est{{0, Pose2{}}, {500000, Pose2{1, 0, 0}}, {1000000, Pose2{}}, {9000000, Pose2{}}};

@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
     nlohmann::json j;
     if (gt->count() > 0) {
       const auto a = dpcr::eval::EvaluateAgainstGroundTruth(estimate, dpcr::eval::ReadTumFile(ground_truth), sample_period_s);
-      j["accuracy"] = {{"loc_err_ave_m", a.loc_err_ave_m}, {"ate_rmse_m", a.ate_rmse_m}, {"max_err_m", a.max_err_m},
+      j["accuracy"] = {{"loc_err_ave_m", a.loc_err_ave_m}, {"ate_rmse_m", a.ate_rmse_m},
+                       {"rigid_loc_err_ave_m", a.rigid_loc_err_ave_m}, {"max_err_m", a.max_err_m},
                        {"samples", a.samples}, {"unmatched", a.unmatched}};
       std::printf("LocErr_ave %.4f m  ATE RMSE %.4f m  max %.4f m  (%zu samples, %zu unmatched)\n", a.loc_err_ave_m,
                   a.ate_rmse_m, a.max_err_m, a.samples, a.unmatched);
