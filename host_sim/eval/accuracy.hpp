@@ -4,8 +4,8 @@
 //    position errors. max_err_m is the largest of those errors.
 //  - ATE RMSE: the RMS position error after the least-squares rigid alignment (Horn/Umeyama in 2D).
 //  - rigid_loc_err_ave_m: LocErr_ave's statistic on the errors after that alignment instead of the
-//    start pose's. A diagnostic, not the paper's figure: the difference is what the start pose's
-//    own error (its heading against the map built after it) carries to the far end of the run.
+//    start pose's. A diagnostic, not the paper's figure: the difference is the part of the error
+//    that one rigid motion of the whole estimate removes (a turn common to the maps, whatever made it).
 //  - Relations (Kümmerle et al. 2009): for each relation (t1, t2, Z), the error of the estimated
 //    relative pose Between(x(t1), x(t2)) against Z: mean and std of |translation| (m) and |angle| (deg).
 #pragma once
