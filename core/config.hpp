@@ -121,12 +121,14 @@ struct FrontEndConfig {
   bool enable_registration = true;
   // Consecutive rejected first registrations before the status says "lost".
   int lost_after_rejections = 10;
-  // Without wheels or a gyro (the lidar alone), also lost after this many consecutive second
-  // registrations rejected in a mature regional map (0: never). There a turn the first
-  // registration under-followed leaves the submap rotated while each scan still matches it: the
-  // first registrations pass and only the regional map disagrees (apartment seed 5, XV-11 without
-  // odometry: 135 s at up to 7.5 m off). With a heading sensor such a streak is drift the back end
-  // reconciles, not a slip: applied there, intel's relations error doubled.
+  // Without wheels measuring the translation (the lidar alone, a gyro alone, or wheel ticks the
+  // wheel check set aside), also lost after this many consecutive second registrations rejected in
+  // a mature regional map (0: never). There a turn the first registration under-followed, or a
+  // translation it let slide, leaves the submap off while each scan still matches it: the first
+  // registrations pass and only the regional map disagrees (apartment seed 5, XV-11 without
+  // odometry: 135 s at up to 7.5 m off; XV-11 with heading-only ticks, seed 7: 1.3 m off for the
+  // last 1100 s of the run). With wheels such a streak is drift the back end reconciles, not a
+  // slip: applied there, intel's relations error doubled.
   int lidar_only_lost_after_second_rejections = 3;
   // Never smear: a scan whose first registration was rejected while the prediction was uncertain
   // goes into neither the submap nor the regional map (counted scans_not_inserted). Uncertain: no
