@@ -246,33 +246,45 @@ TEST_CASE("Started at an unknown pose that matches nothing: stays lost, changes 
   CHECK(Render(*m) == before);
 }
 
+// A robot started 0.8 m and 20 deg off in a loaded map (the slip), with the lidar alone or with a
+// gyro's samples but no wheels, and the slip rule after `slipped_after` rejected second
+// registrations (0: off): its relocalisations and its final error.
+namespace {
+std::pair<std::uint32_t, double> RunSlipped(int slipped_after, bool gyro) {
+  const dpcr::sim::SimConfig sim_config = SimConfigFor(1, 0.75);
+  dpcr::MapperConfig config = MapperConfigFor(sim_config);
+  config.front_end.lidar_only_lost_after_second_rejections = slipped_after;
+  auto m = Loaded(config, dpcr::Pose2{0.8f, 0.0f, 0.35f});
+  dpcr::sim::Simulation sim(dpcr::sim::LoadBuiltinWorld("apartment"), sim_config);
+  dpcr::sim::SimEvent e;
+  double error_m = 1e9;
+  while (sim.Step(&e)) {
+    if (e.type == dpcr::sim::SimEventType::kOdometry && gyro) {
+      dpcr::OdometrySample gyro_only = e.odometry;  // the simulated gyro's rate, no wheels
+      gyro_only.pose = dpcr::Pose2::Identity();
+      gyro_only.has_wheels = false;
+      REQUIRE(gyro_only.has_gyro);
+      m->AddOdometry(gyro_only);
+    }
+    if (e.type != dpcr::sim::SimEventType::kScan) continue;
+    (void)m->AddScan(e.scan);
+    error_m = ErrorM(m->pose(), e.truth.ToPose2());
+  }
+  return std::make_pair(m->counters().relocalisations, error_m);
+}
+}  // namespace
+
 // Without wheels or a gyro nothing measures a turn: a submap the first registration let slip
 // still matches every new scan, and only the regional map disagrees. Here the slip is the start
-// pose itself, 0.8 m and 20 deg off: the robot must call itself lost on the regional map's
-// rejections (FrontEndConfig::lidar_only_lost_after_second_rejections) and be found again.
+// pose itself: the robot must call itself lost on the regional map's rejections
+// (FrontEndConfig::lidar_only_lost_after_second_rejections) and be found again.
 TEST_CASE("A lidar-only robot whose submap the regional map keeps rejecting is lost and found again") {
-  const dpcr::sim::SimConfig sim_config = SimConfigFor(1, 0.75);
-  const dpcr::Pose2 wrong_start{0.8f, 0.0f, 0.35f};
-  const auto run = [&](int slipped_after) {
-    dpcr::MapperConfig config = MapperConfigFor(sim_config);
-    config.front_end.lidar_only_lost_after_second_rejections = slipped_after;
-    auto m = Loaded(config, wrong_start);
-    dpcr::sim::Simulation sim(dpcr::sim::LoadBuiltinWorld("apartment"), sim_config);
-    dpcr::sim::SimEvent e;
-    double error_m = 1e9;
-    while (sim.Step(&e)) {
-      if (e.type != dpcr::sim::SimEventType::kScan) continue;  // no odometry at all
-      (void)m->AddScan(e.scan);
-      error_m = ErrorM(m->pose(), e.truth.ToPose2());
-    }
-    return std::make_pair(m->counters().relocalisations, error_m);
-  };
-  const auto [found, error_m] = run(3);
+  const auto [found, error_m] = RunSlipped(3, false);
   INFO("relocalisations " << found << ", final error " << error_m << " m");
   CHECK(found >= 1);
   CHECK(error_m < 0.3);
   // The rule off: the robot stays where the slip put it.
-  const auto [found_off, error_off_m] = run(0);
+  const auto [found_off, error_off_m] = RunSlipped(0, false);
   INFO("without the rule: relocalisations " << found_off << ", final error " << error_off_m << " m");
   CHECK(error_off_m > 0.5);
 }
@@ -282,35 +294,11 @@ TEST_CASE("A lidar-only robot whose submap the regional map keeps rejecting is l
 // went, and the regional map's rejections must send it lost as well. With wheels such a streak is
 // drift the back end reconciles (intel).
 TEST_CASE("A robot with a gyro and no wheel translation whose submap the regional map keeps rejecting is lost and found again") {
-  const dpcr::sim::SimConfig sim_config = SimConfigFor(1, 0.75);
-  const dpcr::Pose2 wrong_start{0.8f, 0.0f, 0.35f};
-  const auto run = [&](int slipped_after) {
-    dpcr::MapperConfig config = MapperConfigFor(sim_config);
-    config.front_end.lidar_only_lost_after_second_rejections = slipped_after;
-    auto m = Loaded(config, wrong_start);
-    dpcr::sim::Simulation sim(dpcr::sim::LoadBuiltinWorld("apartment"), sim_config);
-    dpcr::sim::SimEvent e;
-    double error_m = 1e9;
-    while (sim.Step(&e)) {
-      if (e.type == dpcr::sim::SimEventType::kOdometry) {
-        dpcr::OdometrySample gyro_only = e.odometry;  // the simulated gyro's rate, no wheels
-        gyro_only.pose = dpcr::Pose2::Identity();
-        gyro_only.has_wheels = false;
-        REQUIRE(gyro_only.has_gyro);
-        m->AddOdometry(gyro_only);
-        continue;
-      }
-      if (e.type != dpcr::sim::SimEventType::kScan) continue;
-      (void)m->AddScan(e.scan);
-      error_m = ErrorM(m->pose(), e.truth.ToPose2());
-    }
-    return std::make_pair(m->counters().relocalisations, error_m);
-  };
-  const auto [found, error_m] = run(3);
+  const auto [found, error_m] = RunSlipped(3, true);
   INFO("relocalisations " << found << ", final error " << error_m << " m");
   CHECK(found >= 1);
   CHECK(error_m < 0.3);
-  const auto [found_off, error_off_m] = run(0);
+  const auto [found_off, error_off_m] = RunSlipped(0, true);
   INFO("without the rule: relocalisations " << found_off << ", final error " << error_off_m << " m");
   CHECK(error_off_m > 0.5);
 }
