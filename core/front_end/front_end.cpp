@@ -342,7 +342,7 @@ bool FrontEnd::SkipScan(const ProjectedScan& projected, const Pose2& predicted) 
 }
 
 bool FrontEnd::UncertainPrediction(const Pose2& predicted) const {
-  return odometry_.empty() || !odometry_.newest().has_wheels || consecutive_rejections_ > 0 ||
+  return !WheelsMeasured() || consecutive_rejections_ > 0 ||
          std::fabs(NormalizeAngle(predicted.theta - pose_.theta)) > config_.front_end.uncertain_turn_rad;
 }
 
@@ -398,7 +398,7 @@ void FrontEnd::RebuildSubmapReferenceIfDue() {
     // trim floor, FirstRegistrationPlicp): without them a wide band of cells is as likely a scan
     // de-skewed by a wrong guess, and fitting it as a wall locks the registration onto the smear
     // (XV-11, gyro only, seeds 1-10: 0.049 m with the clean tolerance, 0.227 m with the wider one).
-    const bool wheels = !odometry_.empty() && odometry_.newest().has_wheels;
+    const bool wheels = WheelsMeasured();
     ReferenceConfig reference = wheels ? ReferenceForNoise(f.submap_reference, config_) : f.submap_reference;
     const int reachable = (s_.submap->size() + 1) / 2 * config_.grid.hit_delta - 1;
     if (reachable < reference.obstacle_threshold) reference.obstacle_threshold = static_cast<std::int16_t>(reachable);

@@ -151,8 +151,10 @@ class FrontEnd {
   // apartment seeds 1-10 LocErr_ave 0.55 m at 0.3 against several metres at 1).
   static constexpr float kPriorThetaWithoutHeading = 0.3f;
   static float PriorThetaScale(const ScanMotion& motion) { return motion.wheels() || motion.gyro() ? 1.0f : kPriorThetaWithoutHeading; }
-  // Wheels or a gyro measure the turns (the newest odometry sample says which the robot has).
-  bool HeadingMeasured() const { return !odometry_.empty() && (odometry_.newest().has_wheels || odometry_.newest().has_gyro); }
+  // Wheels measure the translation (the newest odometry sample says; the wheel check may have set
+  // them aside), wheels or a gyro the turns.
+  bool WheelsMeasured() const { return !odometry_.empty() && odometry_.newest().has_wheels; }
+  bool HeadingMeasured() const { return WheelsMeasured() || (!odometry_.empty() && odometry_.newest().has_gyro); }
   // A first registration rejected from the wheels' prediction, tried again from the constant
   // velocity's when they differ by more than FrontEndConfig::odometry_doubt_*: the answer if
   // accepted, else `rejected`. (The scan was projected with the wheels' motion: logged odometry

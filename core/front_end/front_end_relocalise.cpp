@@ -19,8 +19,7 @@ bool FrontEnd::LostNow() {
   // Without wheels measuring the translation, a submap the regional map keeps rejecting has slipped
   // (FrontEndConfig::lidar_only_lost_after_second_rejections); it may still be near where it believes.
   const int slipped_after = config_.front_end.lidar_only_lost_after_second_rejections;
-  const bool wheels = !odometry_.empty() && odometry_.newest().has_wheels;
-  const bool slipped = slipped_after > 0 && !wheels && consecutive_second_rejections_ >= slipped_after;
+  const bool slipped = slipped_after > 0 && !WheelsMeasured() && consecutive_second_rejections_ >= slipped_after;
   if (lifted || slipped || consecutive_rejections_ >= config_.front_end.lost_after_rejections) StartRelocalisation(!lifted);
   return relocalising_;
 }

@@ -123,7 +123,8 @@ nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, cons
     }
     const auto a = dpcr::eval::EvaluateAgainstGroundTruth(measured, run.ground_truth);
     metrics["accuracy"] = {{"loc_err_ave_m", a.loc_err_ave_m}, {"ate_rmse_m", a.ate_rmse_m},
-                           {"rigid_loc_err_ave_m", a.rigid_loc_err_ave_m}, {"max_err_m", a.max_err_m}, {"samples", a.samples}, {"unmatched", a.unmatched}};
+                           {"rigid_loc_err_ave_m", a.rigid_loc_err_ave_m}, {"max_err_m", a.max_err_m},
+                           {"samples", a.samples}, {"unmatched", a.unmatched}};
     if (run.accuracy_from_us != INT64_MIN && !run.estimate.empty()) {
       metrics["accuracy"]["from_s"] = static_cast<double>(run.accuracy_from_us - run.estimate.front().stamp_us) * 1e-6;
     }
