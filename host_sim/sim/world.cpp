@@ -23,6 +23,21 @@ int World::SetMaterial(const std::string& material_name, double return_probabili
   return static_cast<int>(materials.size()) - 1;
 }
 
+void CheckWorldLimits(const World& world, const std::string& source) {
+  double x0, y0, x1, y1;
+  world.Bounds(&x0, &y0, &x1, &y1);
+  const auto far = [](double v) { return !(std::fabs(v) <= kMaxWorldCoordinateM); };
+  if (far(x0) || far(y0) || far(x1) || far(y1) || (world.has_start && (far(world.start.x) || far(world.start.y)))) {
+    throw WorldError(source + ": world reaches past " + std::to_string(static_cast<int>(kMaxWorldCoordinateM)) +
+                     " m from the origin (the limit of a simulated floor)");
+  }
+  if (x1 - x0 > kMaxWorldExtentM || y1 - y0 > kMaxWorldExtentM) {
+    throw WorldError(source + ": world spans " + std::to_string(static_cast<int>(x1 - x0)) + " m x " +
+                     std::to_string(static_cast<int>(y1 - y0)) + " m, more than the " +
+                     std::to_string(static_cast<int>(kMaxWorldExtentM)) + " m a side a simulated floor may");
+  }
+}
+
 void World::Bounds(double* xmin, double* ymin, double* xmax, double* ymax) const {
   double x0 = std::numeric_limits<double>::max();
   double y0 = x0;

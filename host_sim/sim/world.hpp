@@ -81,6 +81,14 @@ void AddLegs(World* world, double cx, double cy, double w, double h, double leg_
 // Removes from every wall the part collinear with (within 1 cm of) and overlapping a door.
 void CutDoors(World* world);
 
+// What a loaded world may span. A vacuum's floor fits in far less; beyond this the simulator's
+// set-up grows with the area (a 500 m box: 20 s and 100 MB before the first scan, a 5 km one
+// never started), and coordinates far from the origin lose the mapper's float precision.
+inline constexpr double kMaxWorldExtentM = 200.0;     // width and height of the bounds
+inline constexpr double kMaxWorldCoordinateM = 1000.0;  // |x|, |y| of every point, start included
+// WorldError naming `source` when the world's bounds or start break those limits.
+void CheckWorldLimits(const World& world, const std::string& source);
+
 // "hall", "office" or "apartment"; WorldError for any other name.
 World LoadBuiltinWorld(const std::string& name);
 std::vector<std::string> BuiltinWorldNames();

@@ -1,6 +1,7 @@
 // World file parsers: the line-based text format (docs/world-format.md) and PGM floor plans.
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -112,7 +113,11 @@ DarkPixels ReadDarkPixels(const std::string& bytes, const std::string& source) {
   image.height = tokens.HeaderInt("height");
   const int maxval = tokens.HeaderInt("maxval");
   if (maxval > 65535) throw WorldError(source + ": bad PGM maxval");
-  image.dark.resize(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
+  const std::size_t pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+  // Each pixel takes at least a byte of the file (P5: one or two, P2: a digit or a separator): a
+  // header promising more than the file holds is refused before the raster is allocated.
+  if (pixels > bytes.size()) throw WorldError(source + ": PGM pixel data truncated");
+  image.dark.resize(pixels);
   if (magic == "P5") {
     const std::size_t start = tokens.RasterStart();
     const std::size_t bpp = maxval > 255 ? 2 : 1;
@@ -126,7 +131,10 @@ DarkPixels ReadDarkPixels(const std::string& bytes, const std::string& source) {
     for (std::size_t i = 0; i < image.dark.size(); ++i) {
       const std::string tok = tokens.Next();
       if (tok.empty()) throw WorldError(source + ": PGM pixel data truncated");
-      image.dark[i] = 2 * std::atoi(tok.c_str()) < maxval ? 1 : 0;
+      char* end = nullptr;
+      const long v = std::strtol(tok.c_str(), &end, 10);
+      if (*end != '\0' || v < 0 || v > maxval) throw WorldError(source + ": bad PGM pixel '" + tok + "'");
+      image.dark[i] = 2 * v < maxval ? 1 : 0;
     }
   }
   return image;
@@ -159,6 +167,14 @@ void AddBoundaryWalls(const DarkPixels& image, double resolution_m, Vec2 origin,
       }
     }
   }
+}
+
+// A world without rooms is one room, its bounds, for the coverage planner: it needs an area.
+void AddWholeWorldRoom(World* world, const std::string& source, int line) {
+  double x0, y0, x1, y1;
+  world->Bounds(&x0, &y0, &x1, &y1);
+  if (!(x0 < x1 && y0 < y1)) Fail(source, line, "world has no area (its walls lie on one line) and no room");
+  world->rooms.push_back(Room{"all", x0, y0, x1, y1});
 }
 
 }  // namespace
@@ -233,11 +249,8 @@ World ParseWorldText(const std::string& text, const std::string& source_name) {
     }
   }
   if (world.segments.empty() && world.circles.empty()) Fail(source_name, line_no, "world has no walls or circles");
-  if (world.rooms.empty()) {
-    double x0, y0, x1, y1;
-    world.Bounds(&x0, &y0, &x1, &y1);
-    world.rooms.push_back(Room{"all", x0, y0, x1, y1});
-  }
+  if (world.rooms.empty()) AddWholeWorldRoom(&world, source_name, line_no);
+  CheckWorldLimits(world, source_name);
   CutDoors(&world);
   return world;
 }
@@ -248,10 +261,11 @@ World ParsePgmWorld(const std::string& bytes, const std::string& source_name, do
   const DarkPixels image = ReadDarkPixels(bytes, source_name);
   World world;
   world.name = source_name;
-  AddBoundaryWalls(image, resolution_m, origin, &world);
-  if (world.segments.empty()) throw WorldError(source_name + ": PGM has no dark (wall) pixels");
   world.rooms.push_back(Room{"all", origin.x, origin.y, origin.x + image.width * resolution_m,
                              origin.y + image.height * resolution_m});
+  CheckWorldLimits(world, source_name);  // the image's footprint, before its edges are traced
+  AddBoundaryWalls(image, resolution_m, origin, &world);
+  if (world.segments.empty()) throw WorldError(source_name + ": PGM has no dark (wall) pixels");
   return world;
 }
 

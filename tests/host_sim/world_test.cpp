@@ -56,6 +56,8 @@ TEST_CASE("Malformed text worlds report the line", "[world]") {
   CHECK(ErrorOf("box 0 0 1 1\nroom r 2 0 1 1\n").find("w.txt:2: room needs") == 0);
   CHECK(ErrorOf("wall 1 1 1 1\n").find("w.txt:1: wall has zero length") == 0);
   CHECK(ErrorOf("# nothing\n").find("w.txt:1: world has no walls") == 0);
+  CHECK(ErrorOf("wall 4 0 4 4\nwall 4 1 4 6\n") == "w.txt:2: world has no area (its walls lie on one line) and no room");
+  CHECK(ErrorOf("wall 4 0 4 4\nroom r 0 0 4 4\n").empty());
   CHECK(ErrorOf("box 0 0 4 3\n").empty());
 }
 
@@ -88,6 +90,34 @@ TEST_CASE("PGM floor plans merge wall edges into runs", "[world]") {
   REQUIRE(w.segments.size() == 4);  // top, bottom, left, right of the bar
   CHECK_THROWS_WITH(ParsePgmWorld("P6 1 1 255\n", "x.pgm", 0.1, Vec2{}), "x.pgm: not a PGM file (magic 'P6')");
   CHECK_THROWS_WITH(ParsePgmWorld("P5 4 4 255\n\x01", "x.pgm", 0.1, Vec2{}), "x.pgm: PGM pixel data truncated");
+}
+
+TEST_CASE("Worlds too big or too far for a simulated floor are refused before anything is built", "[world]") {
+  // A 5 km box once took the simulator to 2.7 GB and a crash, a 1 km one never started.
+  CHECK(ErrorOf("box 0 0 500 400\n") == "w.txt: world spans 500 m x 400 m, more than the 200 m a side a simulated floor may");
+  CHECK(ErrorOf("box 0 0 5000 5000\n").find("w.txt: world reaches past 1000 m from the origin") == 0);
+  CHECK(ErrorOf("box 0 0 200 150\n").empty());
+  CHECK(ErrorOf("box 0 0 4 3\nroom far 0 0 4 300\n").find("w.txt: world spans 4 m x 300 m") == 0);
+  CHECK(ErrorOf("box 5000 5000 5004 5003\n").find("w.txt: world reaches past 1000 m from the origin") == 0);
+  CHECK(ErrorOf("box 0 0 4 3\nstart 1e6 0 0\n").find("w.txt: world reaches past 1000 m") == 0);
+  // A PGM's footprint counts, resolution and origin included.
+  const std::string one_dark_pixel = "P2 1 1 255 0\n";
+  CHECK_NOTHROW(ParsePgmWorld(one_dark_pixel, "x.pgm", 0.05, Vec2{-100.0, -100.0}));
+  CHECK_THROWS_WITH(ParsePgmWorld(one_dark_pixel, "x.pgm", 500.0, Vec2{}),
+                    "x.pgm: world spans 500 m x 500 m, more than the 200 m a side a simulated floor may");
+  CHECK_THROWS_WITH(ParsePgmWorld(one_dark_pixel, "x.pgm", 0.05, Vec2{1e300, 0.0}),
+                    Catch::StartsWith("x.pgm: world reaches past 1000 m"));
+}
+
+TEST_CASE("A PGM header promising more pixels than the file holds is refused without allocating them", "[world]") {
+  // 10^10 pixels (10 GB of raster) from a 24-byte file: refused at once, P5 or P2.
+  CHECK_THROWS_WITH(ParsePgmWorld("P5 100000 100000 255\n\x01", "x.pgm", 0.05, Vec2{}), "x.pgm: PGM pixel data truncated");
+  CHECK_THROWS_WITH(ParsePgmWorld("P2 100000 100000 255\n0 0 0", "x.pgm", 0.05, Vec2{}), "x.pgm: PGM pixel data truncated");
+  // Plain-PGM pixels are numbers within [0, maxval].
+  CHECK_THROWS_WITH(ParsePgmWorld("P2 2 1 255 0 99999999999999999999\n", "x.pgm", 0.05, Vec2{}),
+                    "x.pgm: bad PGM pixel '99999999999999999999'");
+  CHECK_THROWS_WITH(ParsePgmWorld("P2 2 1 255 0 -3\n", "x.pgm", 0.05, Vec2{}), "x.pgm: bad PGM pixel '-3'");
+  CHECK_THROWS_WITH(ParsePgmWorld("P2 2 1 255 0 12x\n", "x.pgm", 0.05, Vec2{}), "x.pgm: bad PGM pixel '12x'");
 }
 
 TEST_CASE("Built-in worlds load with rooms, doors and a start", "[world]") {
