@@ -70,6 +70,14 @@ class Tokens {
     if (next_ >= tokens_.size()) throw CarmenError(line_, std::string("line ends before ") + what);
     return tokens_[next_++];
   }
+  // The line must end here: words left over mean its count or its fields were wrong (read on,
+  // readings would have been taken for the pose and the time stamp).
+  void End(const char* last_field) {
+    if (next_ < tokens_.size()) {
+      throw CarmenError(line_, std::to_string(tokens_.size() - next_) + " more words after the " + last_field +
+                                   " (a wrong number of readings?)");
+    }
+  }
   // The whole word as a finite decimal number (correctly rounded, as strtod).
   double Number(const char* what) {
     const std::string_view w = Word(what);
@@ -136,6 +144,7 @@ void ParseFlaser(Tokens& t, LaserRecord* r) {
   r->stamp_us = t.Stamp("ipc_timestamp");
   t.Word("hostname");
   t.Number("logger_timestamp");
+  t.End("logger_timestamp");
 }
 
 // ROBOTLASER1 type start_angle fov resolution max_range accuracy remission_mode n r1..rn
@@ -202,6 +211,10 @@ bool CarmenReader::Next(Record* out) {
       out->odom.pose = ReadPose(t, "odometry pose");
       for (const char* what : {"tv", "rv", "accel"}) t.Number(what);
       out->odom.stamp_us = t.Stamp("ipc_timestamp");
+      // The rest, so that a line cut short (inside its time stamp, say) is not taken for whole.
+      t.Word("hostname");
+      t.Number("logger_timestamp");
+      t.End("logger_timestamp");
       ++counters_.odom_records;
       return true;
     }

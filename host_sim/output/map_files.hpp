@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -19,14 +20,26 @@ struct FusedMap {
   int height() const { return box.height(); }
 };
 
-// Renders any Mapper's fused global map.
+// The largest fused map rendered: 2^26 cells (128 MB, a 400 m square at 5 cm). Past that the
+// regions lie absurdly far apart (a pose that jumped kilometres), and a plain error beats a failed
+// allocation.
+constexpr std::size_t kMaxRenderedCells = std::size_t{1} << 26;
+
+// Renders any Mapper's fused global map; std::runtime_error when it spans more than
+// kMaxRenderedCells.
 template <class MapperType>
 FusedMap RenderFused(const MapperType& mapper) {
   FusedMap map;
   map.resolution_m = mapper.config().grid.resolution_m;
   map.box = mapper.MapBounds();
   if (map.box.width() <= 0 || map.box.height() <= 0) return map;
-  map.cells.resize(static_cast<std::size_t>(map.box.width()) * static_cast<std::size_t>(map.box.height()));
+  const std::size_t cells = static_cast<std::size_t>(map.box.width()) * static_cast<std::size_t>(map.box.height());
+  if (cells > kMaxRenderedCells) {
+    throw std::runtime_error("the map spans " + std::to_string(static_cast<long long>(map.box.width() * static_cast<double>(map.resolution_m))) +
+                             " m x " + std::to_string(static_cast<long long>(map.box.height() * static_cast<double>(map.resolution_m))) +
+                             " m, too large to render: its regions lie far apart (did a pose jump?)");
+  }
+  map.cells.resize(cells);
   (void)mapper.RenderMap(map.box, dpcr::Span<std::int16_t>(map.cells.data(), map.cells.size()));
   return map;
 }

@@ -73,6 +73,13 @@ TEST_CASE("Malformed lines are errors that name the line and the reason") {
       "FLASER 2 1e39 2 0 0 0 0 0 0 1.0 h 1\n",                      // range past float
       "ODOM 1 -4e38 3 0 0 0 1.0 h 1\n",                             // pose past float
       "ROBOTLASER1 0 -1e300 3.0 1.0 30.0 0.01 0 2 1 2 0 0 0 0 0 0 0 0 0 0 0 5.0 h 5.1\n",  // angle past float
+      // A count smaller than the readings: read on, readings were taken for the pose and stamps.
+      "FLASER 2 1 2 3 4 0 0 0 0 0 0 1.0 h 1\n",
+      // ODOM lines cut short: inside the time stamp, before the host name, before the logger stamp.
+      "ODOM 1 2 3 0 0 0 12\n",
+      "ODOM 1 2 3 0 0 0 1.0\n",
+      "ODOM 1 2 3 0 0 0 1.0 h\n",
+      "ODOM 1 2 3 0 0 0 1.0 h 1 extra\n",
   };
   for (const char* text : bad) {
     std::istringstream log(std::string("# header\n") + text);
