@@ -30,6 +30,7 @@ struct MapperCounters {
   std::uint32_t scans_without_odometry = 0;  // no odometry sample yet: constant-velocity prediction
   std::uint32_t odometry_samples = 0;
   std::uint32_t odometry_steps_back = 0;     // samples stamped earlier than their predecessor
+  std::uint32_t odometry_rejected = 0;       // not finite or past any floor: dropped (FrontEnd::AddOdometry)
   std::uint32_t beams_invalid = 0;           // no return, or outside [min, max] range
   std::uint32_t beams_isolated = 0;          // returns dropped as junk (LidarConfig::drop_isolated_returns)
   std::uint32_t regions_created = 0;

@@ -6,6 +6,19 @@
 #include "core/grid/ray_caster.hpp"
 
 namespace dpcr {
+namespace {
+
+// Odometry poses farther than this from the odometry origin are corrupt samples, not motion: past
+// any floor a vacuum or a research robot drives, and short of where float positions fail.
+constexpr float kMaxOdometryCoordinateM = 100000.0f;
+
+bool PlausibleOdometry(const OdometrySample& s) {
+  // Written so that NaN fails every test.
+  const bool position = std::fabs(s.pose.x) <= kMaxOdometryCoordinateM && std::fabs(s.pose.y) <= kMaxOdometryCoordinateM;
+  return position && std::isfinite(s.pose.theta) && (!s.has_gyro || std::isfinite(s.gyro_yaw_rate));
+}
+
+}  // namespace
 
 Status FrontEnd::Init(const MapperConfig& config) {
   const Status v = Validate(config);
@@ -52,6 +65,12 @@ Status FrontEnd::Init(const MapperConfig& config) {
 }
 
 void FrontEnd::AddOdometry(const OdometrySample& sample) {
+  // A CARMEN pose of 1e6 m once opened a region 1000 km away: such a sample is counted and dropped,
+  // the prediction comes from the samples around it.
+  if (!PlausibleOdometry(sample)) {
+    ++counters_.odometry_rejected;
+    return;
+  }
   const std::uint32_t before = odometry_.steps_back();
   wheel_check_.AddOdometry(sample);
   const OdometrySample used = wheel_check_.Filter(sample);

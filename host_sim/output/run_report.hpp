@@ -132,6 +132,7 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
   j["counters"] = {{"scans_without_odometry", c.scans_without_odometry},
                    {"odometry_samples", c.odometry_samples},
                    {"odometry_steps_back", c.odometry_steps_back},
+                   {"odometry_rejected", c.odometry_rejected},
                    {"odometry_without_wheel_translation", c.odometry_without_wheel_translation},
                    {"beams_invalid", c.beams_invalid},
                    {"regions_created", c.regions_created},

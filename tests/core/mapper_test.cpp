@@ -1,6 +1,7 @@
 // The Mapper's contract: configuration checks, regions, scans fused once, full pools reported.
 #include <catch2/catch.hpp>
 
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -88,6 +89,30 @@ TEST_CASE("The front end tracks a room run and maps the room walls") {
   };
   REQUIRE(dpcr::IsOccupied(at(7.99f, 4.0f)));
   REQUIRE(dpcr::IsFree(at(4.0f, 4.0f)));
+}
+
+TEST_CASE("Odometry samples that are not finite or lie past any floor are dropped and counted") {
+  using M = dpcr::Mapper<dpcr::VacuumProfile>;
+  const dpcr::test::SyntheticRun<M> run(8.0f, 400, 450);
+  auto clean = MakeMapper<dpcr::VacuumProfile>();
+  Feed(*clean, run);
+  // The same run with corrupt samples among the good ones (a CARMEN pose of 1e6 m once opened a
+  // region 1000 km away and ended the replay in std::bad_alloc).
+  auto corrupt_run = run;
+  const float bad[] = {1e6f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(), -2e5f};
+  for (std::size_t k = 0; k < 4; ++k) {
+    dpcr::OdometrySample s = corrupt_run.odometry[100 + 50 * k];
+    (k % 2 == 0 ? s.pose.x : s.pose.y) = bad[k];
+    corrupt_run.odometry.insert(corrupt_run.odometry.begin() + static_cast<std::ptrdiff_t>(101 + 50 * k), s);
+  }
+  auto m = MakeMapper<dpcr::VacuumProfile>();
+  Feed(*m, corrupt_run);
+  CHECK(m->counters().odometry_rejected == 4);
+  CHECK(clean->counters().odometry_rejected == 0);
+  CHECK(m->counters().odometry_samples == clean->counters().odometry_samples);
+  CHECK(m->region_count() == clean->region_count());
+  CHECK(m->pose().x == Approx(clean->pose().x).margin(0.02));
+  CHECK(m->pose().y == Approx(clean->pose().y).margin(0.02));
 }
 
 TEST_CASE("A full region pool stops map growth, keeps the pose, and says so") {
