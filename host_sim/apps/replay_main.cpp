@@ -261,6 +261,9 @@ int ReplayDevice(const Options& opt) {
   dpcr::DeviceReplay replay(files, lidar, &sink);
   std::string error;
   if (!replay.Open(opt.uart, opt.candump, &error)) throw std::runtime_error(error);
+  for (const dpcr::SkippedLines* s : {&replay.uart_skipped(), &replay.can_skipped()}) {
+    if (s->count > 0) std::fprintf(stderr, "dpcr-replay: warning: %d line(s) skipped, first %s\n", s->count, s->first.c_str());
+  }
   dpcr::MapperConfig config;
   device.ApplyTo(&config.lidar);
   dpcr::ApplyLidarModel(lidar.kind, &config.lidar);
@@ -288,7 +291,12 @@ int ReplayDevice(const Options& opt) {
                       {"packets", c.lidar.packets}, {"bad_packets", c.lidar.bad_packets}, {"resyncs", c.lidar.resyncs},
                       {"discarded_bytes", c.lidar.discarded_bytes}, {"revolutions", c.lidar.revolutions},
                       {"gaps", c.lidar.gaps}, {"decimated", c.lidar.decimated}, {"odometry", c.odometry},
-                      {"status_frames", c.can.status_frames}, {"lifts", c.lifts}, {"lifted_odometry", c.lifted_samples}};
+                      {"status_frames", c.can.status_frames}, {"lifts", c.lifts}, {"lifted_odometry", c.lifted_samples},
+                      {"uart_lines_skipped", replay.uart_skipped().count},
+                      {"candump_lines_skipped", replay.can_skipped().count}};
+  if (!opt.candump.empty() && c.odometry == 0) {
+    std::fprintf(stderr, "dpcr-replay: warning: %s gave no odometry: the lidar mapped alone\n", opt.candump.c_str());
+  }
   metrics = dpcr::output::WriteRunOutputs(opt.out, dpcr::output::RenderFused(mapper), run, metrics);
   PrintSummary(run, metrics, opt.out);
   SaveMapIfAsked(opt, mapper);

@@ -105,7 +105,8 @@ std::string FormatCandumpLine(const CandumpRecord& record) {
   return line;
 }
 
-bool ReadCandumpLog(const std::string& path, std::vector<CandumpRecord>* out, std::string* error) {
+bool ReadCandumpLog(const std::string& path, std::vector<CandumpRecord>* out, std::string* error,
+                    SkippedLines* skipped) {
   std::ifstream in(path);
   if (!in) {
     *error = path + ": cannot open: " + std::strerror(errno);
@@ -119,8 +120,13 @@ bool ReadCandumpLog(const std::string& path, std::vector<CandumpRecord>* out, st
     if (line.empty()) continue;
     CandumpRecord r;
     if (!ParseCandumpLine(line, &r)) {
-      *error = path + ":" + std::to_string(number) + ": not a candump log line: " + line.substr(0, 60);
-      return false;
+      const std::string message = path + ":" + std::to_string(number) + ": not a candump log line: " + line.substr(0, 60);
+      if (skipped == nullptr) {
+        *error = message;
+        return false;
+      }
+      skipped->Add(message);
+      continue;
     }
     out->push_back(std::move(r));
   }

@@ -12,6 +12,7 @@
 
 #include "hal/can_frame.hpp"
 #include "hal/ports.hpp"
+#include "host_sim/drivers/skipped_lines.hpp"
 
 namespace dpcr {
 
@@ -25,7 +26,9 @@ bool ParseCandumpLine(const std::string& line, CandumpRecord* out);
 std::string FormatCandumpLine(const CandumpRecord& record);
 
 // Reads a whole log; false with "path:line: reason" on the first bad line.
-bool ReadCandumpLog(const std::string& path, std::vector<CandumpRecord>* out, std::string* error);
+// With `skipped`, a line that does not parse is counted there and the reading goes on.
+bool ReadCandumpLog(const std::string& path, std::vector<CandumpRecord>* out, std::string* error,
+                    SkippedLines* skipped = nullptr);
 bool WriteCandumpLog(const std::string& path, const std::vector<CandumpRecord>& records, std::string* error);
 
 // A CanSource over loaded records. With a clock (a ReplayClock), a record stamped later than

@@ -186,9 +186,19 @@ DeviceReplay::DeviceReplay(const DeviceFilesConfig& files, const LidarStreamConf
 
 bool DeviceReplay::Open(const std::string& uart_path, const std::string& candump_path, std::string* error) {
   std::vector<UartChunk> chunks;
-  if (!uart_path.empty() && !ReadUartCapture(uart_path, &chunks, error, &uart_end_us_)) return false;
+  if (!uart_path.empty() && !ReadUartCapture(uart_path, &chunks, error, &uart_end_us_, &uart_skipped_)) return false;
   std::vector<CandumpRecord> records;
-  if (!candump_path.empty() && !ReadCandumpLog(candump_path, &records, error)) return false;
+  if (!candump_path.empty() && !ReadCandumpLog(candump_path, &records, error, &can_skipped_)) return false;
+  // A bad line here and there is a recording with a flipped byte; mostly bad lines, no recording.
+  const auto mostly_bad = [&](const std::string& path, const SkippedLines& s, std::size_t good) {
+    if (s.count == 0 || static_cast<std::size_t>(s.count) <= good) return false;
+    *error = path + ": " + std::to_string(s.count) + " of " + std::to_string(s.count + static_cast<int>(good)) +
+             " lines do not parse (first: " + s.first + ")";
+    return true;
+  };
+  if (mostly_bad(uart_path, uart_skipped_, chunks.size()) || mostly_bad(candump_path, can_skipped_, records.size())) {
+    return false;
+  }
   uart_.reset(new UartCaptureSource(std::move(chunks)));
   can_.reset(new CandumpSource(std::move(records)));
   return true;

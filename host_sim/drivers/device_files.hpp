@@ -117,8 +117,12 @@ class DeviceEmitter {
 class DeviceReplay {
  public:
   DeviceReplay(const DeviceFilesConfig& files, const LidarStreamConfig& lidar, DeviceSink* sink);
-  // Either path may be empty (that stream is absent).
+  // Either path may be empty (that stream is absent). Lines that do not parse are skipped and
+  // counted (uart_skipped, can_skipped); false when a file cannot be read, has no valid header,
+  // or when most of its lines are bad (a file that is not a recording).
   bool Open(const std::string& uart_path, const std::string& candump_path, std::string* error);
+  const SkippedLines& uart_skipped() const { return uart_skipped_; }
+  const SkippedLines& can_skipped() const { return can_skipped_; }
   // Replays both files to their end.
   void Run();
   DevicePipelineCounters counters() const { return pipeline_->counters(); }
@@ -128,6 +132,8 @@ class DeviceReplay {
   std::unique_ptr<UartCaptureSource> uart_;
   std::unique_ptr<CandumpSource> can_;
   std::int64_t uart_end_us_ = INT64_MIN;  // the capture's "# end" stamp, if any
+  SkippedLines uart_skipped_;
+  SkippedLines can_skipped_;
 };
 
 }  // namespace dpcr

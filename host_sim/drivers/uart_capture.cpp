@@ -50,7 +50,8 @@ std::string FormatUartCaptureLine(std::int64_t stamp_us, const std::uint8_t* dat
   return line;
 }
 
-bool ReadUartCapture(const std::string& path, std::vector<UartChunk>* out, std::string* error, std::int64_t* end_us) {
+bool ReadUartCapture(const std::string& path, std::vector<UartChunk>* out, std::string* error, std::int64_t* end_us,
+                     SkippedLines* skipped) {
   std::ifstream in(path);
   if (!in) {
     *error = path + ": cannot open: " + std::strerror(errno);
@@ -78,8 +79,13 @@ bool ReadUartCapture(const std::string& path, std::vector<UartChunk>* out, std::
     if (line.empty() || line[0] == '#') continue;
     UartChunk chunk;
     if (!ParseUartCaptureLine(line, &chunk) || chunk.stamp_us < last) {
-      *error = path + ":" + std::to_string(number) + ": malformed or out-of-order chunk";
-      return false;
+      const std::string message = path + ":" + std::to_string(number) + ": malformed or out-of-order chunk";
+      if (skipped == nullptr) {
+        *error = message;
+        return false;
+      }
+      skipped->Add(message);
+      continue;
     }
     last = chunk.stamp_us;
     out->push_back(std::move(chunk));

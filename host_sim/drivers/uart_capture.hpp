@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hal/ports.hpp"
+#include "host_sim/drivers/skipped_lines.hpp"
 
 namespace dpcr {
 
@@ -17,11 +18,12 @@ struct UartChunk {
 };
 
 // Reads a whole capture; false with a message naming the file and line on a bad line
-// (chunks before it are kept in `out`). `end_us`, when given, receives the stamp of an
-// "# end STAMP" line (a recording's end: when the firmware took its last revolution), else is
-// left as it was.
+// (chunks before it are kept in `out`), unless `skipped` is given: then a chunk line that does not
+// parse or goes back in time is counted there and the reading goes on. `end_us`, when given,
+// receives the stamp of an "# end STAMP" line (a recording's end: when the firmware took its last
+// revolution), else is left as it was. A file without the header line is an error either way.
 bool ReadUartCapture(const std::string& path, std::vector<UartChunk>* out, std::string* error,
-                     std::int64_t* end_us = nullptr);
+                     std::int64_t* end_us = nullptr, SkippedLines* skipped = nullptr);
 // Parses one data line ("sec.usec HEX"); false if malformed.
 bool ParseUartCaptureLine(const std::string& line, UartChunk* out);
 std::string FormatUartCaptureLine(std::int64_t stamp_us, const std::uint8_t* data, std::size_t size);

@@ -1,8 +1,10 @@
 #include <catch2/catch.hpp>
 
+#include <fstream>
 #include <string>
 
 #include "host_sim/drivers/candump_log.hpp"
+#include "tests/support/temp_dir.hpp"
 
 using dpcr::CandumpRecord;
 
@@ -56,6 +58,23 @@ TEST_CASE("candump rejects malformed lines and CAN FD") {
   CHECK_FALSE(dpcr::ParseCandumpLine("(1.000000) can0 800#00", &r));
   CHECK_FALSE(dpcr::ParseCandumpLine("(1.000000) can0 120##100", &r));
   CHECK_FALSE(dpcr::ParseCandumpLine("(1.000000) can0 120#001122334455667788", &r));
+}
+
+TEST_CASE("candump log read with a skip count loses only its bad lines") {
+  const dpcr::test::ScopedTempDir dir("candump_skip");
+  const std::string path = (dir.path() / "wheels.log").string();
+  std::ofstream(path) << "(1.000000) can0 100#01\n(1.0000Z0) can0 101#02\n(2.000000) can0 102#0Z\n(3.000000) can0 103#03\n";
+  std::vector<CandumpRecord> records;
+  std::string error;
+  CHECK_FALSE(dpcr::ReadCandumpLog(path, &records, &error));  // strict: the first bad line is an error
+  CHECK(error.find("wheels.log:2: not a candump log line") != std::string::npos);
+  records.clear();
+  dpcr::SkippedLines skipped;
+  REQUIRE(dpcr::ReadCandumpLog(path, &records, &error, &skipped));
+  REQUIRE(records.size() == 2);
+  CHECK(records[1].frame.id == 0x103);
+  CHECK(skipped.count == 2);
+  CHECK(skipped.first.find("wheels.log:2: not a candump log line: (1.0000Z0)") != std::string::npos);
 }
 
 TEST_CASE("candump log file round trip") {

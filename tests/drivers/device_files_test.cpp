@@ -120,6 +120,55 @@ TEST_CASE("emit device files then replay gives the same scans and trajectory") {
   CHECK(c.scans == 30);  // the last revolution included
 }
 
+namespace {
+// Overwrites one character of every `every`-th line of `path` past its first with `c`.
+void SpoilLines(const std::string& path, int every, char c) {
+  std::ifstream in(path);
+  std::string text, line;
+  for (int n = 0; std::getline(in, line); ++n) {
+    if (n > 0 && n % every == 0) line[3] = c;
+    text += line + "\n";
+  }
+  in.close();
+  std::ofstream(path) << text;
+}
+
+struct CountingSink : dpcr::DeviceSink {
+  std::size_t odometry = 0, scans = 0;
+  void AddOdometry(const dpcr::OdometrySample&) override { ++odometry; }
+  void AddScan(const dpcr::DeviceScan&) override { ++scans; }
+};
+}  // namespace
+
+TEST_CASE("a flipped byte costs the replay its line and a file of bad lines is refused") {
+  const Run run = MakeRun();
+  const dpcr::test::ScopedTempDir temp("device_skips");
+  const std::string dir = temp.str();
+  dpcr::DeviceFilesConfig files;
+  Emit(run, files, dir);
+  SpoilLines(dir + "/lidar.uart", 40, 'Z');  // a handful of chunks
+  SpoilLines(dir + "/wheels.log", 100, 'Z');
+  dpcr::LidarStreamConfig lidar;
+  lidar.assembler.angle_map = files.angle_map;
+  CountingSink sink;
+  std::string error;
+  {
+    dpcr::DeviceReplay replay(files, lidar, &sink);
+    REQUIRE(replay.Open(dir + "/lidar.uart", dir + "/wheels.log", &error));
+    CHECK(replay.uart_skipped().count > 0);
+    CHECK(replay.can_skipped().count > 0);
+    CHECK(replay.can_skipped().first.find("wheels.log:") != std::string::npos);
+    replay.Run();
+    // The rest is read: the revolutions and the odometry samples but for a few.
+    CHECK(sink.scans + 3 >= run.scans.size());
+    CHECK(sink.odometry + 10 >= run.odometry.size());
+  }
+  SpoilLines(dir + "/wheels.log", 1, 'Z');  // every line
+  dpcr::DeviceReplay replay(files, lidar, &sink);
+  CHECK_FALSE(replay.Open(dir + "/lidar.uart", dir + "/wheels.log", &error));
+  CHECK(error.find("lines do not parse") != std::string::npos);
+}
+
 TEST_CASE("the emitter describes the device in device.json, which reads back as the device options") {
   const dpcr::test::ScopedTempDir temp("device_json");
   const std::string dir = temp.str();

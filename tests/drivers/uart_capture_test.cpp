@@ -41,6 +41,27 @@ TEST_CASE("uart capture write and read back, long chunks split") {
   std::remove(path.c_str());
 }
 
+TEST_CASE("uart capture read with a skip count loses only its bad lines") {
+  const dpcr::test::ScopedTempDir dir("uart_skip");
+  const std::string path = (dir.path() / "flipped.uart").string();
+  {
+    std::ofstream f(path);
+    // A flipped byte (G), a chunk going back in time, then good chunks again.
+    f << "# dpcr-uart-capture 1\n1.000000 54AA\n2.000000 5G\n0.500000 54\n3.000000 2C\n4.000000 0102\n";
+  }
+  std::vector<dpcr::UartChunk> chunks;
+  std::string error;
+  dpcr::SkippedLines skipped;
+  REQUIRE(dpcr::ReadUartCapture(path, &chunks, &error, nullptr, &skipped));
+  REQUIRE(chunks.size() == 3);
+  CHECK(chunks[2].stamp_us == 4000000);
+  CHECK(skipped.count == 2);
+  CHECK(skipped.first == path + ":3: malformed or out-of-order chunk");
+  // Without the header it is no capture, skip count or not.
+  { std::ofstream(path) << "1.000000 54AA\n"; }
+  CHECK_FALSE(dpcr::ReadUartCapture(path, &chunks, &error, nullptr, &skipped));
+}
+
 TEST_CASE("uart capture rejects a bad line and names it") {
   const std::string path = "uart_capture_bad.uart";
   {
