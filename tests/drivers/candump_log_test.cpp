@@ -85,15 +85,16 @@ TEST_CASE("candump log file round trip") {
     records[static_cast<std::size_t>(i)].frame.dlc = 2;
     records[static_cast<std::size_t>(i)].frame.data[1] = static_cast<std::uint8_t>(i);
   }
+  const dpcr::test::ScopedTempDir dir("candump_round_trip");
+  const std::string path = (dir.path() / "candump_test.log").string();
   std::string error;
-  REQUIRE(dpcr::WriteCandumpLog("candump_test.log", records, &error));
+  REQUIRE(dpcr::WriteCandumpLog(path, records, &error));
   std::vector<CandumpRecord> back;
-  REQUIRE(dpcr::ReadCandumpLog("candump_test.log", &back, &error));
+  REQUIRE(dpcr::ReadCandumpLog(path, &back, &error));
   REQUIRE(back.size() == 3);
   CHECK(back[2].frame.id == 0x102);
   CHECK(back[2].frame.data[1] == 2);
   dpcr::CandumpSource src(back);
   CHECK(src.next_stamp_us() == 1000000);
   CHECK(src.Read().frame.id == 0x100);
-  std::remove("candump_test.log");
 }

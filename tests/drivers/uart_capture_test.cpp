@@ -10,7 +10,8 @@
 #include "tests/support/temp_dir.hpp"
 
 TEST_CASE("uart capture write and read back, long chunks split") {
-  const std::string path = "uart_capture_test.uart";
+  const dpcr::test::ScopedTempDir dir("uart_round_trip");
+  const std::string path = (dir.path() / "uart_capture_test.uart").string();
   std::vector<std::uint8_t> big(5000);
   for (std::size_t i = 0; i < big.size(); ++i) big[i] = static_cast<std::uint8_t>(i * 7);
   {
@@ -38,7 +39,6 @@ TEST_CASE("uart capture write and read back, long chunks split") {
   CHECK(r.stamp_us == 1700000000000123);
   r = source.Read(buf, 2);
   CHECK(r.size == 1);
-  std::remove(path.c_str());
 }
 
 TEST_CASE("uart capture read with a skip count loses only its bad lines") {
@@ -63,7 +63,8 @@ TEST_CASE("uart capture read with a skip count loses only its bad lines") {
 }
 
 TEST_CASE("uart capture rejects a bad line and names it") {
-  const std::string path = "uart_capture_bad.uart";
+  const dpcr::test::ScopedTempDir dir("uart_bad_line");
+  const std::string path = (dir.path() / "uart_capture_bad.uart").string();
   {
     std::ofstream f(path);
     f << "# dpcr-uart-capture 1\n1.000000 54AA\n2.000000 5G\n";
@@ -78,7 +79,6 @@ TEST_CASE("uart capture rejects a bad line and names it") {
   CHECK_FALSE(dpcr::ParseUartCaptureLine("1.000000 545", &c));  // odd hex
   CHECK_FALSE(dpcr::ReadUartCapture("does-not-exist.uart", &chunks, &error));
   CHECK(error.find("does-not-exist.uart") != std::string::npos);
-  std::remove(path.c_str());
 }
 
 TEST_CASE("uart capture: a recording's end line gives its stamp, other comment lines are skipped") {

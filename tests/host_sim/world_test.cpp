@@ -1,4 +1,5 @@
 #include "host_sim/sim/world.hpp"
+#include "tests/support/temp_dir.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -62,17 +63,16 @@ TEST_CASE("Malformed text worlds report the line", "[world]") {
 }
 
 TEST_CASE("World files load by extension, missing files fail clearly", "[world]") {
-  const std::string text_path = "dpcr_world_test.world";
+  const dpcr::test::ScopedTempDir dir("world_files");
+  const std::string text_path = (dir.path() / "test.world").string();
   std::ofstream(text_path) << "box 0 0 2 2\n";
   CHECK(LoadWorldFile(text_path).segments.size() == 4);
-  std::remove(text_path.c_str());
   CHECK_THROWS_WITH(LoadWorldFile("/nonexistent/x.world"), "/nonexistent/x.world: cannot open world file");
 
   // 4 x 3 plain PGM, one dark pixel at column 1, row 0 (top): a 5 cm square at y in [0.10, 0.15].
-  const std::string pgm_path = "dpcr_world_test.pgm";
+  const std::string pgm_path = (dir.path() / "test.pgm").string();
   std::ofstream(pgm_path) << "P2\n# comment\n4 3\n255\n255 0 255 255\n255 255 255 255\n255 255 255 255\n";
   const World w = LoadWorldFile(pgm_path);
-  std::remove(pgm_path.c_str());
   REQUIRE(w.segments.size() == 4);
   double x0, y0, x1, y1;
   w.Bounds(&x0, &y0, &x1, &y1);
