@@ -120,12 +120,9 @@ bool ReadCandumpLog(const std::string& path, std::vector<CandumpRecord>* out, st
     if (line.empty()) continue;
     CandumpRecord r;
     if (!ParseCandumpLine(line, &r)) {
-      const std::string message = path + ":" + std::to_string(number) + ": not a candump log line: " + line.substr(0, 60);
-      if (skipped == nullptr) {
-        *error = message;
+      if (!SkipBadLine(skipped, path + ":" + std::to_string(number) + ": not a candump log line: " + line.substr(0, 60), error)) {
         return false;
       }
-      skipped->Add(message);
       continue;
     }
     out->push_back(std::move(r));

@@ -15,4 +15,15 @@ struct SkippedLines {
   }
 };
 
+// A reader's answer to a bad line: with `skipped`, counted there and the reading goes on (true);
+// without, `message` is the reader's error (false).
+inline bool SkipBadLine(SkippedLines* skipped, std::string message, std::string* error) {
+  if (skipped == nullptr) {
+    *error = std::move(message);
+    return false;
+  }
+  skipped->Add(std::move(message));
+  return true;
+}
+
 }  // namespace dpcr

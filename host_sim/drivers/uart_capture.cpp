@@ -79,12 +79,9 @@ bool ReadUartCapture(const std::string& path, std::vector<UartChunk>* out, std::
     if (line.empty() || line[0] == '#') continue;
     UartChunk chunk;
     if (!ParseUartCaptureLine(line, &chunk) || chunk.stamp_us < last) {
-      const std::string message = path + ":" + std::to_string(number) + ": malformed or out-of-order chunk";
-      if (skipped == nullptr) {
-        *error = message;
+      if (!SkipBadLine(skipped, path + ":" + std::to_string(number) + ": malformed or out-of-order chunk", error)) {
         return false;
       }
-      skipped->Add(message);
       continue;
     }
     last = chunk.stamp_us;

@@ -35,8 +35,8 @@ FusedMap RenderFused(const MapperType& mapper) {
   if (map.box.width() <= 0 || map.box.height() <= 0) return map;
   const std::size_t cells = static_cast<std::size_t>(map.box.width()) * static_cast<std::size_t>(map.box.height());
   if (cells > kMaxRenderedCells) {
-    throw std::runtime_error("the map spans " + std::to_string(static_cast<long long>(map.box.width() * static_cast<double>(map.resolution_m))) +
-                             " m x " + std::to_string(static_cast<long long>(map.box.height() * static_cast<double>(map.resolution_m))) +
+    const auto metres = [&](int n) { return std::to_string(static_cast<long long>(n * static_cast<double>(map.resolution_m))); };
+    throw std::runtime_error("the map spans " + metres(map.box.width()) + " m x " + metres(map.box.height()) +
                              " m, too large to render: its regions lie far apart (did a pose jump?)");
   }
   map.cells.resize(cells);
