@@ -42,7 +42,9 @@ struct VacuumProfile {
   static constexpr int kReferenceCells = 4096;
   // Edges of the back end's pose graph.
   static constexpr int kMaxGraphEdges = 96;
-  static constexpr std::uint64_t kBudgetPredictionInstr = 80'000;
+  // Prediction 225 K measured (71 K before the run declared an LD06's range noise: smoothing a
+  // 450-beam scan's returns along its walls, core/geometry/return_smoothing.hpp, ~150 K).
+  static constexpr std::uint64_t kBudgetPredictionInstr = 280'000;
   static constexpr std::uint64_t kBudgetFirstRegistrationInstr = 320'000;
   static constexpr std::uint64_t kBudgetSecondRegistrationInstr = 65'000;
   static constexpr std::uint64_t kBudgetInsertionInstr = 1'070'000;
@@ -52,8 +54,12 @@ struct VacuumProfile {
   // tests/budget/back_end_cost.sh. Was 19 M (14.4 M measured, a map-to-map job); the worst is now
   // a relocalisation step (one map's coarse grid and a slice of 45 headings over it, 19.2 M; the
   // back end's own worst, a map-to-map job, is 17.2 M; a loop-closure search slice less). ~20-40 ms
-  // on a Cortex-A53: a fifth to two fifths of a 10 Hz scan period.
-  static constexpr std::uint64_t kBudgetWorstScanInstr = 21'000'000;
+  // on a Cortex-A53: a fifth to two fifths of a 10 Hz scan period. Since 2026-12-02 the run
+  // declares an LD06's range noise, as dpcr-sim does (noise-aware line fits and trim floor, the
+  // returns' smoothing): 21.5 M measured, hence 24 M. That call enters a new region (its map seeded
+  // from the submap's scans 10.9 M, the submap recentred 4.1 M, a reference build 3.2 M) in the
+  // scan a back-end job runs (3.1 M): seeding and a job in one call, not the smoothing (0.15 M).
+  static constexpr std::uint64_t kBudgetWorstScanInstr = 24'000'000;
 };
 
 // The public benchmark logs (intel.clf: a 30 m x 30 m lab, ~900 m² with long corridors):
@@ -92,7 +98,7 @@ struct TinyProfile {
   static constexpr int kMaxLines = 128;
   static constexpr int kReferenceCells = 2048;
   static constexpr int kMaxGraphEdges = 16;
-  static constexpr std::uint64_t kBudgetPredictionInstr = 45'000;
+  static constexpr std::uint64_t kBudgetPredictionInstr = 160'000;  // 128 K, the returns' smoothing included
   // 480 K (was 140 K) and 170 K (was 54 K) below: this run (an 8 m room seen through the 6.4 m
   // submap, 180° turns in one scan at the lane ends) rejects 81 of its 300 first registrations;
   // a rejection now triggers a coarse pose search (every other scan of a streak) and a weak match

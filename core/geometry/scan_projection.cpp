@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/base/assert.hpp"
+#include "core/geometry/return_smoothing.hpp"
 
 namespace dpcr {
 namespace {
@@ -59,6 +60,15 @@ ProjectedScan Project(Beams beams, const LidarConfig& lidar, const ScanMotion& m
     } else {
       ++out.invalid;
     }
+  }
+  // A lidar that declares its range noise has its returns on straight walls moved onto them.
+  if (lidar.range_noise_m > 0.0f && beams.size() > 0) {
+    ReturnSmoothingConfig smoothing;
+    smoothing.noise_m = lidar.range_noise_m;
+    // A revolution's beams, evenly spaced (a 360-degree lidar; a narrower one only lets wider gaps through).
+    const float beam_step_rad = 2.0f * kPi / static_cast<float>(beams.size());
+    out.smoothed = SmoothReturns(Span<Point2>(hits_out.data(), out.hits), Point2{lidar.mount.x, lidar.mount.y},
+                                 beam_step_rad, smoothing);
   }
   return out;
 }

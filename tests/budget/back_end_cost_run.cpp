@@ -18,7 +18,9 @@
 int main() {
   using MapperType = dpcr::Mapper<dpcr::VacuumProfile>;
   static MapperType mapper;
-  if (mapper.Init(dpcr::MapperConfig{}) != dpcr::Status::kOk) return 2;
+  dpcr::MapperConfig mapper_config;
+  mapper_config.lidar.range_noise_m = 0.025f;  // an LD06's, as dpcr-sim declares it (the returns' smoothing runs)
+  if (mapper.Init(mapper_config) != dpcr::Status::kOk) return 2;
   const dpcr::sim::World world = dpcr::sim::LoadBuiltinWorld("apartment");
   dpcr::sim::SimConfig config;
   config.duration_min = 12.0;
