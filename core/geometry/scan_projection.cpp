@@ -67,8 +67,8 @@ ProjectedScan Project(Beams beams, const LidarConfig& lidar, const ScanMotion& m
     smoothing.noise_m = lidar.range_noise_m;
     // A revolution's beams, evenly spaced (a 360-degree lidar; a narrower one only lets wider gaps through).
     const float beam_step_rad = 2.0f * kPi / static_cast<float>(beams.size());
-    out.smoothed = SmoothReturns(Span<Point2>(hits_out.data(), out.hits), Point2{lidar.mount.x, lidar.mount.y},
-                                 beam_step_rad, smoothing);
+    (void)SmoothReturns(Span<Point2>(hits_out.data(), out.hits), Point2{lidar.mount.x, lidar.mount.y}, beam_step_rad,
+                        smoothing);
   }
   return out;
 }

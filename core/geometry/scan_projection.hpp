@@ -17,7 +17,6 @@ struct ProjectedScan {
   std::size_t free_ends = 0;  // no-return beams cleared up to no_return_free_m
   std::size_t invalid = 0;    // beams with neither
   std::size_t isolated = 0;   // returns dropped as junk (LidarConfig::drop_isolated_returns)
-  std::size_t smoothed = 0;   // returns moved onto their wall (SmoothReturns; LidarConfig::range_noise_m)
 };
 
 // Points are expressed in the robot frame at the scan stamp (the one `motion` was made for).

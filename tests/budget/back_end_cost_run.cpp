@@ -18,9 +18,6 @@
 int main() {
   using MapperType = dpcr::Mapper<dpcr::VacuumProfile>;
   static MapperType mapper;
-  dpcr::MapperConfig mapper_config;
-  mapper_config.lidar.range_noise_m = 0.025f;  // an LD06's, as dpcr-sim declares it (the returns' smoothing runs)
-  if (mapper.Init(mapper_config) != dpcr::Status::kOk) return 2;
   const dpcr::sim::World world = dpcr::sim::LoadBuiltinWorld("apartment");
   dpcr::sim::SimConfig config;
   config.duration_min = 12.0;
@@ -28,6 +25,10 @@ int main() {
   // Kidnaps in the last minutes, once most of the apartment is mapped.
   config.kidnaps.count = 3;
   config.kidnaps.from_min = 9.0;
+  // The lidar as dpcr-sim declares it to the mapper (its range noise: the returns' smoothing runs).
+  dpcr::MapperConfig mapper_config;
+  mapper_config.lidar = dpcr::sim::MapperLidarConfig(config);
+  if (mapper.Init(mapper_config) != dpcr::Status::kOk) return 2;
   dpcr::sim::Simulation sim(world, config);
   dpcr::sim::SimEvent e;
   int scans = 0, dumped = 0;

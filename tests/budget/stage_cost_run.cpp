@@ -9,6 +9,7 @@
 
 #include "core/capacity.hpp"
 #include "core/mapper.hpp"
+#include "hal/device_options.hpp"
 #include "host_sim/carmen/carmen_reader.hpp"
 #include "host_sim/carmen/laser_scan.hpp"
 #include "tests/budget/synthetic_run.hpp"
@@ -69,17 +70,16 @@ int RunIntel(const std::string& clf) {
 // 3/4 of a cell past a border, so that no single placement decides them.
 constexpr float kRoomM = 8.0f;
 constexpr int kWallPlacements = 4;
-// The lidar declares an LD06's range noise, as dpcr-sim and the firmware do, so that the stages
-// count what runs on the robot (the returns' smoothing in the prediction, the noise-aware line
-// fits and trim floor); the walls themselves are exact.
-constexpr float kLidarNoiseM = 0.025f;
 
 template <class Profile>
 int RunSynthetic(int beams) {
   using MapperType = dpcr::Mapper<Profile>;
   static MapperType mapper;
   dpcr::MapperConfig config;
-  config.lidar.range_noise_m = kLidarNoiseM;
+  // The lidar is an LD06 as the firmware declares it (its range noise), so that the stages count
+  // what runs on the robot (the returns' smoothing in the prediction, the noise-aware line fits and
+  // trim floor); the walls themselves are exact.
+  dpcr::ApplyLidarModel(dpcr::LidarKind::kLd06, &config.lidar);
   if (config.front_end.submap_scans > Profile::kSubmapMaxScans) config.front_end.submap_scans = Profile::kSubmapMaxScans;
   for (int placement = 0; placement < kWallPlacements; ++placement) {
     const float room_m = kRoomM + config.grid.resolution_m * static_cast<float>(placement) / kWallPlacements;
