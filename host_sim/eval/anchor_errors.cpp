@@ -56,7 +56,8 @@ struct AnchorFit {
 }  // namespace
 
 AnchorDecomposition DecomposeByAnchors(const std::vector<MappedScan>& scans, const std::vector<dpcr::Pose2>& anchors,
-                                       const Trajectory& ground_truth, double sample_period_s, std::int64_t tolerance_us) {
+                                       const Trajectory& ground_truth, double sample_period_s, std::int64_t tolerance_us,
+                                       const std::vector<AnchorEdge>& edges) {
   AnchorDecomposition out;
   Trajectory gt = ground_truth;
   std::stable_sort(gt.begin(), gt.end(), [](const StampedPose& a, const StampedPose& b) { return a.stamp_us < b.stamp_us; });
@@ -113,6 +114,15 @@ AnchorDecomposition DecomposeByAnchors(const std::vector<MappedScan>& scans, con
     const int r = scans[i].region;
     const bool fitted = in_map(r) && !fits[static_cast<std::size_t>(r)].pairs.empty();
     with_best.push_back(fitted ? Distance(best[static_cast<std::size_t>(r)] * Rigid::Of(scans[i].in_region), g) : own.back());
+  }
+  for (const auto& e : edges) {
+    const auto fitted = [&](int r) { return in_map(r) && !fits[static_cast<std::size_t>(r)].pairs.empty(); };
+    if (!fitted(e.from) || !fitted(e.to)) continue;
+    const Rigid measured = Rigid::Of(e.measurement);
+    const Rigid relation = best[static_cast<std::size_t>(e.from)].Inverse() * best[static_cast<std::size_t>(e.to)];
+    const Rigid final = Rigid::Of(anchors[static_cast<std::size_t>(e.from)]).Inverse() * Rigid::Of(anchors[static_cast<std::size_t>(e.to)]);
+    out.edges.push_back({e, Distance(measured, relation), std::fabs(WrappedDegrees(measured.theta - relation.theta)),
+                         Distance(measured, final), std::fabs(WrappedDegrees(measured.theta - final.theta))});
   }
   out.loc_err_ave_m = MeanOfLargestTenth(own);
   out.best_anchors_loc_err_ave_m = MeanOfLargestTenth(with_best);

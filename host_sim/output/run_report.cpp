@@ -33,6 +33,31 @@ nlohmann::json RelationsJson(const dpcr::eval::RelationsResult& r) {
           {"rot_std_deg", r.rot_std_deg},   {"matched", r.matched},         {"unmatched", r.unmatched}};
 }
 
+// metrics.json "accuracy.edges": each graph edge's measurement against the truth (the relative pose
+// of its maps' best anchors) and against the graph's final anchors, and per kind the means.
+nlohmann::json EdgeErrorsJson(const std::vector<dpcr::eval::EdgeError>& edges) {
+  static const char* const kKinds[] = {"sequence", "map_match", "loop"};
+  nlohmann::json list = nlohmann::json::array(), by_kind = nlohmann::json::object();
+  for (int k = 0; k < 3; ++k) {
+    double truth_m = 0.0, truth_deg = 0.0, final_m = 0.0, final_deg = 0.0;
+    int n = 0;
+    for (const auto& e : edges) {
+      if (e.edge.kind != k) continue;
+      ++n;
+      truth_m += e.truth_m, truth_deg += e.truth_deg, final_m += e.final_m, final_deg += e.final_deg;
+    }
+    if (n == 0) continue;
+    by_kind[kKinds[k]] = {{"count", n}, {"truth_mean_m", truth_m / n}, {"truth_mean_deg", truth_deg / n},
+                          {"final_mean_m", final_m / n}, {"final_mean_deg", final_deg / n}};
+  }
+  for (const auto& e : edges) {
+    const int k = e.edge.kind;
+    list.push_back({{"from", e.edge.from}, {"to", e.edge.to}, {"kind", k >= 0 && k < 3 ? kKinds[k] : "?"},
+                    {"truth_m", e.truth_m}, {"truth_deg", e.truth_deg}, {"final_m", e.final_m}, {"final_deg", e.final_deg}});
+  }
+  return {{"by_kind", by_kind}, {"list", list}};
+}
+
 // metrics.json "accuracy": the error a perfect back end would leave (every map at the anchor that
 // fits the truth best) and, per map, how far its anchor is from that one (docs/back-end.md).
 void AddAnchorDecomposition(const RunRecord& run, nlohmann::json* accuracy) {
@@ -41,7 +66,7 @@ void AddAnchorDecomposition(const RunRecord& run, nlohmann::json* accuracy) {
   for (std::size_t i = 0; i < run.estimate.size(); ++i) {
     if (run.estimate[i].stamp_us >= run.accuracy_from_us) scans.push_back({run.estimate[i], run.scan_region[i], run.scan_in_region[i]});
   }
-  const auto d = dpcr::eval::DecomposeByAnchors(scans, run.final_anchors, run.ground_truth);
+  const auto d = dpcr::eval::DecomposeByAnchors(scans, run.final_anchors, run.ground_truth, 1.0, 10000, run.final_edges);
   (*accuracy)["best_anchors_loc_err_ave_m"] = d.best_anchors_loc_err_ave_m;
   nlohmann::json regions = nlohmann::json::array();
   for (const auto& r : d.regions) {
@@ -49,6 +74,7 @@ void AddAnchorDecomposition(const RunRecord& run, nlohmann::json* accuracy) {
                        {"anchor_offset_deg", r.anchor_offset_deg}, {"in_map_mean_m", r.in_map_mean_m}});
   }
   (*accuracy)["regions"] = regions;
+  (*accuracy)["edges"] = EdgeErrorsJson(d.edges);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include "host_sim/output/map_files.hpp"
 #include "host_sim/eval/accuracy.hpp"
+#include "host_sim/eval/anchor_errors.hpp"
 #include "host_sim/eval/trajectory.hpp"
 #include "core/mapper_types.hpp"
 
@@ -28,6 +29,7 @@ struct RunRecord {
   std::vector<int> scan_region;
   std::vector<dpcr::Pose2> scan_in_region;
   std::vector<dpcr::Pose2> final_anchors;  // each map's anchor at the end (FinalizeTrajectory)
+  std::vector<dpcr::eval::AnchorEdge> final_edges;  // the region graph's edges at the end
   // AddScan calls in which the back end worked (a queued job or a loop-closure search), and the
   // time they took (front end included: the core has no clock of its own).
   int backend_calls = 0;
@@ -79,6 +81,12 @@ template <class MapperType>
 void FinalizeTrajectory(const MapperType& mapper, RunRecord* run) {
   run->final_anchors.clear();
   for (int r = 0; r < mapper.region_count(); ++r) run->final_anchors.push_back(mapper.region_anchor(r));
+  run->final_edges.clear();
+  const auto& graph = mapper.back_end().graph();
+  for (int i = 0; i < graph.edge_count(); ++i) {
+    const auto& e = graph.edge(i);
+    run->final_edges.push_back({e.from, e.to, static_cast<int>(e.kind), e.measurement});
+  }
   for (std::size_t i = 0; i < run->estimate.size() && i < run->scan_region.size(); ++i) {
     const int r = run->scan_region[i];
     if (r >= 0 && r < mapper.region_count()) run->estimate[i].pose = mapper.region_anchor(r) * run->scan_in_region[i];

@@ -105,3 +105,25 @@ TEST_CASE("Scans in no map keep their pose, and the run's own figure matches Eva
   for (const auto& s : scans) in_map0 += s.region == 0 ? 1 : 0;
   REQUIRE(d.regions[0].scans == in_map0);  // scan 5 left out of map 0's fit
 }
+
+TEST_CASE("An edge is checked against the best anchors' relation and against the final anchors") {
+  // Map 1 ends 2 cm and 0.01 rad off; one edge measured the truth, one what the graph ended with,
+  // one between a map and a map that holds no scan (skipped).
+  const HandRun run = Lap();
+  std::vector<Pose2> anchors = run.true_anchors;
+  anchors[1] = Pose2{4.02f, 0.0f, 0.01f};
+  anchors.push_back(Pose2{8.0f, 0.0f, 0.0f});
+  const Pose2 truth = run.true_anchors[0].Inverse() * run.true_anchors[1];
+  const Pose2 graph = anchors[0].Inverse() * anchors[1];
+  const std::vector<dpcr::eval::AnchorEdge> edges = {{0, 1, 1, truth}, {0, 1, 2, graph}, {1, 2, 0, truth}};
+  const auto d = dpcr::eval::DecomposeByAnchors(Mapped(run, anchors, 0.0f), anchors, run.truth, 1.0, 10000, edges);
+  REQUIRE(d.edges.size() == 2);
+  REQUIRE(d.edges[0].edge.kind == 1);
+  REQUIRE(d.edges[0].truth_m == Approx(0.0).margin(1e-4));
+  REQUIRE(d.edges[0].truth_deg == Approx(0.0).margin(1e-3));
+  REQUIRE(d.edges[0].final_m == Approx(0.02).margin(1e-4));
+  REQUIRE(d.edges[0].final_deg == Approx(0.01 * 180.0 / static_cast<double>(dpcr::kPi)).margin(1e-3));
+  REQUIRE(d.edges[1].truth_m == Approx(0.02).margin(1e-4));
+  REQUIRE(d.edges[1].truth_deg == Approx(0.01 * 180.0 / static_cast<double>(dpcr::kPi)).margin(1e-3));
+  REQUIRE(d.edges[1].final_m == Approx(0.0).margin(1e-4));
+}
