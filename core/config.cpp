@@ -95,6 +95,11 @@ bool FrontEndOk(const FrontEndConfig& f, const GridConfig& g) {
                       In(f.submap_refit_min_points, 1, kMaxCount);
   const bool periods = In(f.submap_line_period, 1, kMaxCount) && In(f.region_line_period, 1, kMaxCount) &&
                        In(f.second_registration_period, 1, kMaxCount) && In(f.region_mature_scans, 1, kMaxCount) &&
+                       In(f.region_slow_learning_scans, 1, kMaxCount) &&
+                       // Both deltas must still move a cell at the slow rate.
+                       AboveUpTo(f.region_slow_learning_rate, 0.0f, 1.0f) &&
+                       ScaledLearning(g, f.region_slow_learning_rate).hit_delta > 0 &&
+                       ScaledLearning(g, f.region_slow_learning_rate).miss_delta < 0 &&
                        In(f.lost_after_rejections, 1, kMaxCount) && In(f.lidar_only_lost_after_second_rejections, 0, kMaxCount) &&
                        In(f.submap_restart_after_rejections, 1, kMaxCount) &&
                        In(f.min_start_hits, 0, kMaxCount) && In(f.redeskew_min_m, 0.0f, 1.0f) &&

@@ -58,6 +58,14 @@ struct GridConfig {
   float hit_margin_m = 0.05f;
 };
 
+// The deltas of a grid that learns at `rate` of `g`'s (rounded towards 0); the rest as is.
+inline GridConfig ScaledLearning(const GridConfig& g, float rate) {
+  GridConfig s = g;
+  s.hit_delta = static_cast<std::int16_t>(static_cast<float>(g.hit_delta) * rate);
+  s.miss_delta = static_cast<std::int16_t>(static_cast<float>(g.miss_delta) * rate);
+  return s;
+}
+
 struct LidarConfig {
   float min_range_m = 0.02f;
   float max_range_m = 12.0f;  // R: LD06/LD19 range
@@ -117,6 +125,15 @@ struct FrontEndConfig {
   // previous one, and neighbouring maps keep pulling each other to one heading.
   int region_mature_scans = 100;
   float reference_inner_margin_m = 2.0f;
+  // A regional map that holds `region_slow_learning_scans` scans learns from each further scan at
+  // `region_slow_learning_rate` of the grid's deltas (rounded towards 0; the submap always learns
+  // at full rate). Log-odds count every scan alike, so a map keeps following its latest scans, and
+  // those carry the drift since the map was built: scans' headings against one map moved by 0.2°
+  // within a run, and the maps bent with them. A slow learner keeps what its first scans agreed on
+  // and still maps what it has not seen. Rate 1 = off. Measured: docs/back-end.md, "Maps that
+  // learn slowly once they hold 300 scans".
+  int region_slow_learning_scans = 300;
+  float region_slow_learning_rate = 0.25f;
   // false: the odometry pipeline (dead reckoning + insertion), for comparison.
   bool enable_registration = true;
   // Consecutive rejected first registrations before the status says "lost".

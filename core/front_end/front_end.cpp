@@ -698,10 +698,13 @@ void FrontEnd::InsertIntoRegion(const ProjectedScan& projected, int index, const
     last_scan_in_region_ = Between(r.anchor, world);
     r.path_at_last_scan_m = path_m_;
   }
+  // A map that holds enough scans learns slowly (FrontEndConfig::region_slow_learning_scans).
+  const FrontEndConfig& f = config_.front_end;
+  const bool slow = index >= 0 && regions_[index].scans_inserted >= static_cast<std::uint32_t>(f.region_slow_learning_scans);
   // The submap already copied the robot-frame points: they may move into the region's frame.
   const InsertionStats st = regions_.InsertScan(world, Span<Point2>(s_.hits.data(), projected.hits),
                                                 Span<Point2>(s_.free_ends.data(), projected.free_ends),
-                                                scan_marker_.current(), index);
+                                                scan_marker_.current(), index, slow ? f.region_slow_learning_rate : 1.0f);
   counters_.updates_out_of_box += static_cast<std::uint32_t>(st.out_of_box);
   counters_.updates_dropped_pool_full += static_cast<std::uint32_t>(st.dropped_pool_full);
 }

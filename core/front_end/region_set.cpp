@@ -80,7 +80,7 @@ int RegionSet::SeedFromSubmap(const Submap& submap, const Pose2& submap_pose, Sp
 }
 
 InsertionStats RegionSet::InsertScan(const Pose2& robot, Span<Point2> hits, Span<Point2> free_ends,
-                                     std::uint32_t marker, int index) {
+                                     std::uint32_t marker, int index, float learning_rate) {
   if (index < 0) index = current_;
   if (index < 0 || index >= size_) return InsertionStats{};
   RegionalMap& r = (*this)[index];
@@ -88,8 +88,9 @@ InsertionStats RegionSet::InsertScan(const Pose2& robot, Span<Point2> hits, Span
   const PointTransform into_region(to_region);
   for (Point2& p : hits) p = into_region(p);
   for (Point2& p : free_ends) p = into_region(p);
+  const GridConfig learning = learning_rate < 1.0f ? ScaledLearning(grid_, learning_rate) : grid_;
   const InsertionStats st = InsertRays(*r.grid, Point2{to_region.x, to_region.y}, Span<const Point2>(hits.data(), hits.size()),
-                                       Span<const Point2>(free_ends.data(), free_ends.size()), grid_, marker, scratch_,
+                                       Span<const Point2>(free_ends.data(), free_ends.size()), learning, marker, scratch_,
                                        miss_range_m_);
   ++r.scans_inserted;
   if (st.dropped_pool_full > 0) pool_full_ = true;

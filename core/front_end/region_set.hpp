@@ -47,8 +47,9 @@ class RegionSet {
                                 ScanMarker& marker);
   // Inserts a scan into map `index` (the current one: -1), if any: `hits` and `free_ends` are
   // robot-frame (the robot at `robot` in the world) and are moved into the map's frame in place.
+  // `learning_rate` (0, 1]: the share of the grid's deltas it learns with (ScaledLearning).
   DPCR_STAGE InsertionStats InsertScan(const Pose2& robot, Span<Point2> hits, Span<Point2> free_ends,
-                                       std::uint32_t marker, int index = -1);
+                                       std::uint32_t marker, int index = -1, float learning_rate = 1.0f);
 
   // Loading a saved map (core/persistence), after Reset: appends a map in creation order, empty,
   // with its key, anchor and scan count (none current); nullptr when the pool is full.

@@ -147,6 +147,9 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(front_end.region_width_m, kPositive),
       FLOAT_FIELD(front_end.region_hysteresis_m, (std::vector<double>{-1.0, kNaN, kInf, 1e30, 2.0})),
       INT_FIELD(front_end.region_mature_scans, kCount),
+      INT_FIELD(front_end.region_slow_learning_scans, kCount),
+      // 1e-4: the deltas round to 0 at that rate, and a map would learn nothing more.
+      FLOAT_FIELD(front_end.region_slow_learning_rate, (std::vector<double>{0.0, -1.0, kNaN, kInf, 2.0, 1e-4})),
       FLOAT_FIELD(front_end.reference_inner_margin_m, kNonNegative),
       INT_FIELD(front_end.lost_after_rejections, kCount),
       INT_FIELD(front_end.lidar_only_lost_after_second_rejections, (std::vector<double>{-1.0, -2e9, 1e9})),

@@ -121,3 +121,31 @@ TEST_CASE("A new map is seeded with the submap's scans but the newest, one marke
   REQUIRE(dpcr::IsOccupied(CellAt(g, Point2{0.52f, 0.27f})));
   REQUIRE(CellAt(g, Point2{1.02f, 0.27f}) == dpcr::kUnknownCell);
 }
+
+TEST_CASE("A scan inserted at a learning rate moves cells by that share of the deltas") {
+  auto m = std::make_unique<TwoMaps>();
+  RegionSet& set = m->set;
+  const dpcr::GridConfig grid;
+  (void)set.Enter(RegionKey{0, 0}, Point2{0.0f, 0.0f});
+  const auto insert = [&](Point2 hit, std::uint32_t marker, float rate) {
+    std::vector<Point2> hits{hit};
+    (void)set.InsertScan(Pose2{}, dpcr::Span<Point2>(hits.data(), 1), dpcr::Span<Point2>(), marker, -1, rate);
+  };
+  // Three scans at full rate: the hit cell holds three hits, a cell its ray crosses three misses.
+  for (std::uint32_t k = 1; k <= 3; ++k) insert(Point2{1.01f, 0.01f}, k, 1.0f);
+  const std::int16_t hit3 = CellAt(*set[0].grid, Point2{1.01f, 0.01f});
+  const std::int16_t free3 = CellAt(*set[0].grid, Point2{0.51f, 0.01f});
+  REQUIRE(hit3 == 3 * grid.hit_delta);
+  REQUIRE(free3 == 3 * grid.miss_delta);
+  // A quarter of each delta, rounded towards 0, on the old cells and on a new one.
+  const dpcr::GridConfig slow = dpcr::ScaledLearning(grid, 0.25f);
+  REQUIRE(slow.hit_delta == 216);  // 867 / 4
+  REQUIRE(slow.miss_delta == -103);  // -415 / 4
+  insert(Point2{1.01f, 0.01f}, 4, 0.25f);
+  REQUIRE(CellAt(*set[0].grid, Point2{1.01f, 0.01f}) == hit3 + slow.hit_delta);
+  REQUIRE(CellAt(*set[0].grid, Point2{0.51f, 0.01f}) == free3 + slow.miss_delta);
+  insert(Point2{0.01f, 1.01f}, 5, 0.25f);
+  REQUIRE(CellAt(*set[0].grid, Point2{0.01f, 1.01f}) == slow.hit_delta);
+  REQUIRE(dpcr::IsOccupied(CellAt(*set[0].grid, Point2{0.01f, 1.01f})));  // one hit still marks a wall
+  REQUIRE(set[0].scans_inserted == 5);
+}
