@@ -85,6 +85,7 @@ AnchorDecomposition DecomposeByAnchors(const std::vector<MappedScan>& scans, con
       fits[static_cast<std::size_t>(scans[i].region)].Add(Rigid::Of(scans[i].in_region), truth_of(i));
     }
   }
+  const auto fitted = [&](int r) { return in_map(r) && !fits[static_cast<std::size_t>(r)].pairs.empty(); };
   std::vector<Rigid> best(anchors.size());
   for (std::size_t r = 0; r < anchors.size(); ++r) {
     if (fits[r].pairs.empty()) continue;
@@ -112,11 +113,9 @@ AnchorDecomposition DecomposeByAnchors(const std::vector<MappedScan>& scans, con
     const Rigid estimate = align * Rigid::Of(scans[i].estimate.pose);
     own.push_back(Distance(estimate, g));
     const int r = scans[i].region;
-    const bool fitted = in_map(r) && !fits[static_cast<std::size_t>(r)].pairs.empty();
-    with_best.push_back(fitted ? Distance(best[static_cast<std::size_t>(r)] * Rigid::Of(scans[i].in_region), g) : own.back());
+    with_best.push_back(fitted(r) ? Distance(best[static_cast<std::size_t>(r)] * Rigid::Of(scans[i].in_region), g) : own.back());
   }
   for (const auto& e : edges) {
-    const auto fitted = [&](int r) { return in_map(r) && !fits[static_cast<std::size_t>(r)].pairs.empty(); };
     if (!fitted(e.from) || !fitted(e.to)) continue;
     const Rigid measured = Rigid::Of(e.measurement);
     const Rigid relation = best[static_cast<std::size_t>(e.from)].Inverse() * best[static_cast<std::size_t>(e.to)];
