@@ -47,6 +47,7 @@ struct Options {
   bool localise_only = false;
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
   std::string scan_times;
+  bool write_regions = false;
   std::string heading = "wheels";  // FrontEndConfig::gyro_heading
   float wheel_radius_m = 0.0f;
   float track_width_m = 0.0f;
@@ -205,6 +206,7 @@ int ReplayCarmen(const Options& opt) {
   const auto start = Clock::now();
   dpcr::carmen::CarmenReader reader(in);
   dpcr::output::RunRecord run;
+  run.write_regions = opt.write_regions;
   const CarmenInputCounts counts = MapCarmenLog(opt, in, &mapper, &reader, &run);
   if (run.estimate.empty()) throw std::runtime_error(opt.carmen + ": no laser scans in the log");
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -257,6 +259,7 @@ int ReplayDevice(const Options& opt) {
   lidar.assembler.angle_map = files.angle_map;
   lidar.timing = opt.lidar_timing == "device" ? dpcr::LidarTiming::kDeviceClock : dpcr::LidarTiming::kArrival;
   dpcr::output::RunRecord run;
+  run.write_regions = opt.write_regions;
   TimedMapperSink<MapperType> sink(&mapper, &run);
   dpcr::DeviceReplay replay(files, lidar, &sink);
   std::string error;
@@ -346,6 +349,8 @@ int main(int argc, char** argv) {
   app.add_option("--region-width", opt.region_width_m, "region width S in metres (default: the configuration's, 4 m)")
       ->check(CLI::PositiveNumber);
   app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");
+  app.add_flag("--write-regions", opt.write_regions,
+               "also write regions.tsv (each scan's map and pose in it) and graph.tsv (final anchors and edges)");
   app.add_option("--heading", opt.heading, "--uart: the prediction's heading increment: wheels, or the integrated gyro frames (0x121)")
       ->check(CLI::IsMember({"wheels", "gyro"}))->capture_default_str();
   CLI11_PARSE(app, argc, argv);

@@ -46,6 +46,7 @@ struct Options {
   double kidnap_from_min = 0.0;
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
   std::string scan_times;
+  bool write_regions = false;
   std::string heading = "wheels";  // the prediction's heading: wheels, or gyro (FrontEndConfig::gyro_heading)
   std::string lidar = "ld06";      // ld06, or xv11 (sim::Xv11LidarConfig)
   std::string odometry = "wheels";  // wheels (+ gyro), gyro (no wheel encoders), heading-ticks, none
@@ -243,6 +244,7 @@ int Run(const Options& opt) {
 
   const auto start = Clock::now();
   dpcr::output::RunRecord run;
+  run.write_regions = opt.write_regions;
   dpcr::apps::Progress progress("sim " + opt.world);
   dpcr::sim::SimEvent event;
   SpinTally spins;
@@ -342,6 +344,8 @@ int main(int argc, char** argv) {
   app.add_option("--region-width", opt.region_width_m, "region width S in metres (default: the configuration's, 4 m)")
       ->check(CLI::PositiveNumber);
   app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");
+  app.add_flag("--write-regions", opt.write_regions,
+               "also write regions.tsv (each scan's map and pose in it) and graph.tsv (final anchors and edges)");
   app.add_option("--heading", opt.heading, "the prediction's heading increment: wheels, or the integrated gyro (wheels keep the translation)")
       ->check(CLI::IsMember({"wheels", "gyro"}))->capture_default_str();
   app.add_option("--lidar", opt.lidar, "simulated lidar: ld06 (10 Hz, 450 beams, 12 m) or xv11 (5 Hz, 360 at 1 deg, 0.15-6 m, "

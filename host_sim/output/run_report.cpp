@@ -10,6 +10,7 @@
 
 #include "core/front_end/wheel_check.hpp"
 #include "host_sim/eval/anchor_errors.hpp"
+#include "host_sim/output/region_files.hpp"
 
 namespace dpcr::output {
 namespace {
@@ -136,6 +137,7 @@ nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, cons
   WriteMapPng(dir, map, run.estimate, run.ground_truth);
   WriteTumFile(dir + "/trajectory.tum", run.estimate);
   if (!run.ground_truth.empty()) WriteTumFile(dir + "/ground_truth.tum", run.ground_truth);
+  if (run.write_regions) WriteRegionFiles(dir, run);
 
   metrics["per_scan_ms"] = {{"median", Percentile(run.per_scan_ms, 0.5)},
                             {"p95", Percentile(run.per_scan_ms, 0.95)},

@@ -38,6 +38,7 @@ struct RunRecord {
   // metrics.json "accuracy" from this stamp on (start-aligned there): a session started at an
   // unknown pose in a loaded map has no pose worth measuring before its first fix.
   std::int64_t accuracy_from_us = INT64_MIN;
+  bool write_regions = false;  // also regions.tsv and graph.tsv (region_files.hpp)
 };
 
 // The back end's work counted so far (jobs and searches): a change across a call means it worked.
@@ -93,7 +94,8 @@ void FinalizeTrajectory(const MapperType& mapper, RunRecord* run) {
   }
 }
 
-// Writes the files; returns metrics.json's content. Throws std::runtime_error on I/O errors.
+// Writes the files (regions.tsv and graph.tsv too when run.write_regions); returns metrics.json's
+// content. Throws std::runtime_error on I/O errors.
 nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, const RunRecord& run,
                                nlohmann::json mapper_metrics);
 
