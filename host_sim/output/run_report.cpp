@@ -34,10 +34,18 @@ nlohmann::json RelationsJson(const dpcr::eval::RelationsResult& r) {
           {"rot_std_deg", r.rot_std_deg},   {"matched", r.matched},         {"unmatched", r.unmatched}};
 }
 
+}  // namespace
+
+const char* EdgeKindName(int kind) {
+  static const char* const kKinds[] = {"sequence", "map_match", "loop"};
+  return kind >= 0 && kind < 3 ? kKinds[kind] : "?";
+}
+
+namespace {
+
 // metrics.json "accuracy.edges": each graph edge's measurement against the truth (the relative pose
 // of its maps' best anchors) and against the graph's final anchors, and per kind the means.
 nlohmann::json EdgeErrorsJson(const std::vector<dpcr::eval::EdgeError>& edges) {
-  static const char* const kKinds[] = {"sequence", "map_match", "loop"};
   nlohmann::json list = nlohmann::json::array(), by_kind = nlohmann::json::object();
   for (int k = 0; k < 3; ++k) {
     double truth_m = 0.0, truth_deg = 0.0, final_m = 0.0, final_deg = 0.0;
@@ -48,12 +56,12 @@ nlohmann::json EdgeErrorsJson(const std::vector<dpcr::eval::EdgeError>& edges) {
       truth_m += e.truth_m, truth_deg += e.truth_deg, final_m += e.final_m, final_deg += e.final_deg;
     }
     if (n == 0) continue;
-    by_kind[kKinds[k]] = {{"count", n}, {"truth_mean_m", truth_m / n}, {"truth_mean_deg", truth_deg / n},
+    by_kind[EdgeKindName(k)] = {{"count", n}, {"truth_mean_m", truth_m / n}, {"truth_mean_deg", truth_deg / n},
                           {"final_mean_m", final_m / n}, {"final_mean_deg", final_deg / n}};
   }
   for (const auto& e : edges) {
     const int k = e.edge.kind;
-    list.push_back({{"from", e.edge.from}, {"to", e.edge.to}, {"kind", k >= 0 && k < 3 ? kKinds[k] : "?"},
+    list.push_back({{"from", e.edge.from}, {"to", e.edge.to}, {"kind", EdgeKindName(k)},
                     {"truth_m", e.truth_m}, {"truth_deg", e.truth_deg}, {"final_m", e.final_m}, {"final_deg", e.final_deg}});
   }
   return {{"by_kind", by_kind}, {"list", list}};

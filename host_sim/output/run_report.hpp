@@ -41,6 +41,9 @@ struct RunRecord {
   bool write_regions = false;  // also regions.tsv and graph.tsv (region_files.hpp)
 };
 
+// An edge's kind as metrics.json and graph.tsv name it (AnchorEdge::kind, dpcr::EdgeKind order).
+const char* EdgeKindName(int kind);
+
 // The back end's work counted so far (jobs and searches): a change across a call means it worked.
 template <class MapperType>
 std::uint64_t BackEndWork(const MapperType& mapper) {
