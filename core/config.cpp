@@ -122,7 +122,11 @@ bool FrontEndOk(const FrontEndConfig& f, const GridConfig& g) {
                             PlicpOk(f.second_registration) &&
                             ReferenceOk(f.submap_reference, most_hits) &&
                             ReferenceOk(f.region_reference, g.clamp_max);
-  return submap && periods && regions && registration;
+  // A turn that takes walls within the band out of it, short of the 45 degrees where they would
+  // lie on the grid's diagonals.
+  const bool turn = In(f.grid_turn_rad, 0.0f, 0.7f) && In(f.grid_turn_band_rad, 0.0f, 0.35f) &&
+                    (f.grid_turn_rad == 0.0f || f.grid_turn_band_rad <= 0.5f * f.grid_turn_rad);
+  return submap && periods && regions && registration && turn;
 }
 
 bool SearchOk(const CorrelativeSearchConfig& c) {

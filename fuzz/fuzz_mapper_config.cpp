@@ -119,6 +119,7 @@ void ForEachField(M& m, dpcr::MapperConfig& c) {
       m(f.search.angle_step_rad), m(f.search.xy_window_m), m(f.search.max_points), m(f.search.step_penalty),
       m(f.search.min_gain);
   m(f.weak_match_inlier_ratio), m(f.weak_match_obstacle_threshold);
+  m(f.grid_turn_rad), m(f.grid_turn_band_rad);
   Plicp(m, f.second_registration);
   Reference(m, f.submap_reference);
   Reference(m, f.region_reference);

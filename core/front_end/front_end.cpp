@@ -1,8 +1,10 @@
 #include "core/front_end/front_end.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "core/front_end/reference_for_noise.hpp"
+#include "core/geometry/wall_direction.hpp"
 #include "core/grid/ray_caster.hpp"
 
 namespace dpcr {
@@ -41,6 +43,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   search_grid_version_ = 0;
   consecutive_rejections_ = consecutive_second_rejections_ = 0;
   restart_pending_ = bent_ = false;
+  grid_turn_pending_ = true;
   bent_kept_out_ = 0;
   last_stamp_us_ = -1;
   streak_us_ = 0;
@@ -130,14 +133,16 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   ++counters_.scans;
   (void)scan_marker_.Next();
   // 1. Prediction and de-skew.
-  const Pose2 previous = pose_;
+  Pose2 previous = pose_;
   const std::int64_t since_last_us = last_stamp_us_ >= 0 ? stamp_us - last_stamp_us_ : 0;
   last_stamp_us_ = stamp_us;
-  const Pose2 predicted = Predict(stamp_us, since_last_us);
+  Pose2 predicted = Predict(stamp_us, since_last_us);
   const ScanMotion motion(odometry_, config_.front_end.gyro_heading, VelocityPerSecond(), stamp_us);
   ProjectedScan projected = ProjectScan(beams, config_.lidar, motion, s_.hits, s_.free_ends);
   counters_.beams_invalid += static_cast<std::uint32_t>(projected.invalid);
   counters_.beams_isolated += static_cast<std::uint32_t>(projected.isolated);
+  // Only the run's very first scan may turn the grid: any scan reported before it was in the old frame.
+  const bool may_turn_grid = std::exchange(grid_turn_pending_, false);
   if (SkipScan(projected, predicted)) return Status::kNotEnoughData;
   // 0. Lost (wheels lifted, a long rejection streak, an unknown start): the scan goes into no
   // map; it tracks locally and searches the maps (front_end_relocalise.cpp).
@@ -150,6 +155,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
     FinishScan(since_last_us);
     return Status::kOk;
   }
+  if (may_turn_grid) TurnFrameFromWalls(Span<const Point2>(s_.hits.data(), projected.hits), &previous, &predicted);
   // 2. First registration against the submap (not for the very first scan: nothing to match).
   bool keep_out = false, bent = false;
   const bool first = s_.submap->size() == 0;
@@ -345,6 +351,26 @@ bool FrontEnd::KeepOutBent(std::size_t hits) {
   }
   ++bent_kept_out_;
   return true;
+}
+
+void FrontEnd::TurnFrameFromWalls(Span<const Point2> hits, Pose2* previous, Pose2* predicted) {
+  const FrontEndConfig& f = config_.front_end;
+  // Only for a lidar that declares its range noise: the bands of cells are the noise's (with exact
+  // ranges, walls along the rows map better, and a log's lidar says nothing of its noise).
+  if (f.grid_turn_rad <= 0.0f || !(config_.lidar.range_noise_m > 0.0f) || s_.submap->size() != 0 || regions_.size() != 0) {
+    return;
+  }
+  const WallDirection walls = DominantWallDirection(hits, WallDirectionConfig{});
+  if (!walls.found) return;
+  fe_counters_.first_wall_direction_rad = walls.angle_rad;
+  if (std::fabs(walls.angle_rad) >= f.grid_turn_band_rad) return;
+  // The robot's heading in the turned frame puts its walls grid_turn_rad off the axes. The submap
+  // is empty and its frame the world's: the robot's poses in it turn with the frame.
+  fe_counters_.grid_turn_rad = NormalizeAngle(f.grid_turn_rad - walls.angle_rad - pose().theta);
+  const Pose2 turn{0.0f, 0.0f, fe_counters_.grid_turn_rad};
+  pose_ = turn * pose_;
+  *previous = turn * *previous;
+  *predicted = turn * *predicted;
 }
 
 bool FrontEnd::SkipScan(const ProjectedScan& projected, const Pose2& predicted) {

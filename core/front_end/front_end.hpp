@@ -11,6 +11,7 @@
 // each regional map's cells are in its anchor frame.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "core/back_end/back_end.hpp"
@@ -54,6 +55,11 @@ struct FrontEndCounters {
   // (scans_kept_out_bent) that went into the maps after all.
   std::uint32_t lag_reregistered = 0;
   std::uint32_t lag_bent_taken = 0;
+  // The new map's grid against the robot's first pose (FrontEndConfig::grid_turn_rad): the first
+  // scan's wall direction modulo 90 degrees in the robot frame (NaN: not looked for or none found)
+  // and the turn applied.
+  float first_wall_direction_rad = NAN;
+  float grid_turn_rad = 0.0f;
   FirstRegistrationStats search;               // the coarse pose search of the first registration
 };
 
@@ -178,6 +184,10 @@ class FrontEnd {
   // An empty scan, or a sparse one while the submap is empty (FrontEndConfig::min_start_hits):
   // the pose is the prediction and the scan goes nowhere (counted). True when skipped.
   bool SkipScan(const ProjectedScan& projected, const Pose2& predicted);
+  // The run's first scan, into a new map: turns the world frame about its origin, and the robot's
+  // poses in it (pose_, `previous`, `predicted`), so that the scan's walls lie off the grid's axes
+  // when they lie along them (FrontEndConfig::grid_turn_rad; recorded in fe_counters_).
+  void TurnFrameFromWalls(Span<const Point2> hits, Pose2* previous, Pose2* predicted);
   // Without wheels, a scan whose velocity changed much since the last one (a turn starting or
   // stopping: twice FrontEndConfig::redeskew_min_*) is registered but kept out of the maps, which so
   // keep only well de-skewed scans; registration against them is absolute, so the bent scan's
@@ -290,15 +300,16 @@ class FrontEnd {
   std::int32_t last_motion_us_ = 0;   // the time it took
   static constexpr float kMaxVelocityScale = 2.0f;
   static constexpr std::uint32_t kMinScansBetweenEarlyBuilds = 2;
-  bool weak_match_ = false;  // the last first registration matched weakly (see FrontEndConfig)
   std::uint32_t search_grid_version_ = 0;  // submap_line_builds when the search grid was built
+  bool weak_match_ = false;  // the last first registration matched weakly (see FrontEndConfig)
   bool have_odom_ = false;
   bool have_gyro_yaw_ = false;  // last_gyro_yaw_ holds the gyro yaw at the last prediction
-  float last_gyro_yaw_ = 0.0f;
   bool have_scan_ = false;
+  float last_gyro_yaw_ = 0.0f;
   int consecutive_rejections_ = 0;
   int consecutive_second_rejections_ = 0;  // in a mature regional map (TrackRegions)
   bool restart_pending_ = false;  // a submap restart is due, waiting for a scan with enough returns
+  bool grid_turn_pending_ = false;  // the next scan is the run's first: it may turn the grid
   bool bent_ = false;             // the last scan's de-skew was doubtful (RegisterRedeskewed)
   std::uint8_t bent_kept_out_ = 0;  // bent scans kept out in a row
   static constexpr std::uint8_t kMaxBentKeptOut = 5;  // then one goes in: the submap must not go stale
@@ -323,6 +334,9 @@ class FrontEnd {
   bool restart_submap_ = false;  // the next scan on the floor starts a fresh submap
   bool may_be_near_ = false;     // lost without a lift: the second registration may find it
   bool near_failed_ = false;     // without a heading sensor: the local round failed, search globally
+  // This scan, bent, found a submap of one scan: the waiting scan, de-skewed from both sides,
+  // takes that scan's place (KeepOutBent).
+  bool bent_against_single_ = false;
   std::uint32_t scans_since_closure_try_ = 0;
   float path_at_closure_try_ = 0.0f;
   Pose2 last_scan_in_region_;
@@ -345,9 +359,6 @@ class FrontEnd {
     Pose2 before;  // the scan before it, in the submap frame
   };
   PendingScan pending_;
-  // This scan, bent, found a submap of one scan: the waiting scan, de-skewed from both sides,
-  // takes that scan's place (KeepOutBent).
-  bool bent_against_single_ = false;
 };
 
 }  // namespace dpcr

@@ -12,6 +12,7 @@ RegionalMap* FrontEnd::RestoreRegion(RegionKey key, const Pose2& anchor, std::ui
 void FrontEnd::RestoreStart(Point2 region_origin, const Pose2& start) {
   pose_ = Pose2::Identity();
   submap_pose_ = start;
+  grid_turn_pending_ = false;  // a saved map's frame is kept
   last_world_ = start;
   if (regions_.size() == 0) return;  // nothing saved: the first scan starts a lattice as usual
   const FrontEndConfig& f = config_.front_end;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <vector>
 
 #include "core/mapper.hpp"
@@ -34,6 +35,7 @@ struct Options {
   bool odometry_only = false;
   bool front_end_only = false;
   bool fixed_plan = false;
+  double start_heading_rad = std::numeric_limits<double>::quiet_NaN();
   std::string load_map;
   std::string save_map;
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
@@ -150,6 +152,7 @@ dpcr::sim::SimConfig SimulationConfig(const Options& opt) {
   c.seed = opt.seed;
   c.duration_min = opt.minutes;
   c.vary_plan = !opt.fixed_plan;
+  c.start_heading_rad = opt.start_heading_rad;
   if (opt.lidar == "xv11") c.lidar = dpcr::sim::Xv11LidarConfig();
   if (opt.lidar_min_hz >= 0.0) c.lidar.rate_min_hz = opt.lidar_min_hz;
   c.motion.spin_every_waypoints = opt.spins;
@@ -303,11 +306,9 @@ int Run(const Options& opt) {
   return 0;
 }
 
-}  // namespace
 
-int main(int argc, char** argv) {
-  CLI::App app{"dpcr-sim: simulate a vacuum run and map it; writes map.pgm/.yaml/.png, trajectory.tum, ground_truth.tum, metrics.json"};
-  Options opt;
+// The run: world, plan, device files, maps, what happens in the home.
+void AddRunOptions(CLI::App& app, Options& opt) {
   std::string names;
   for (const auto& n : dpcr::sim::BuiltinWorldNames()) names += (names.empty() ? "" : "|") + n;
   app.add_option("--world", opt.world, "built-in world (" + names + ") or a world file (.txt or .pgm)")->capture_default_str();
@@ -315,6 +316,7 @@ int main(int argc, char** argv) {
   app.add_option("--seed", opt.seed, "random seed: the noise and the cleaning plan (start pose, room order, lanes); same seed, same run")
       ->capture_default_str();
   app.add_flag("--fixed-plan", opt.fixed_plan, "every seed drives the world's own start pose and canonical plan (only the noise varies)");
+  app.add_option("--start-heading", opt.start_heading_rad, "the robot's heading at the start in the world (rad; default: the world's or the seed's); 0: square to the built-in worlds' walls, as from a dock")->check(CLI::Range(-10.0, 10.0));
   app.add_option("--out", opt.out, "output directory (default: out/<world>)");
   app.add_option("--emit-device", opt.emit_device, "also write the run as device files: DIR/lidar.uart (LD06) + DIR/wheels.log (candump: ticks 0x120, gyro 0x121, wheel-lift status 0x122)");
   app.add_option("--wheel-clock-ppm", opt.wheel_clock_ppm,
@@ -346,6 +348,10 @@ int main(int argc, char** argv) {
   app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");
   app.add_flag("--write-regions", opt.write_regions,
                "also write regions.tsv (each scan's map and pose in it) and graph.tsv (final anchors and edges)");
+}
+
+// The robot's sensors and the mapper's knobs measured with them.
+void AddSensorOptions(CLI::App& app, Options& opt) {
   app.add_option("--heading", opt.heading, "the prediction's heading increment: wheels, or the integrated gyro (wheels keep the translation)")
       ->check(CLI::IsMember({"wheels", "gyro"}))->capture_default_str();
   app.add_option("--lidar", opt.lidar, "simulated lidar: ld06 (10 Hz, 450 beams, 12 m) or xv11 (5 Hz, 360 at 1 deg, 0.15-6 m, "
@@ -370,6 +376,15 @@ int main(int argc, char** argv) {
                  "(metres, fraction; default: the model's, ld06 0.01,0.005, xv11 0.01,0.01); 0,0: exact ranges")
       ->expected(2)->delimiter(',')->check(CLI::Range(0.0, 1.0));
   app.add_flag("--ideal-wheels", opt.ideal_wheels, "wheel odometry without calibration error or slips (ticks still quantise)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"dpcr-sim: simulate a vacuum run and map it; writes map.pgm/.yaml/.png, trajectory.tum, ground_truth.tum, metrics.json"};
+  Options opt;
+  AddRunOptions(app, opt);
+  AddSensorOptions(app, opt);
   CLI11_PARSE(app, argc, argv);
   opt.start_pose_given = app.count("--start-pose") > 0;
   if ((opt.localise_only || !opt.map_origin.empty()) && opt.load_map.empty()) {

@@ -56,6 +56,7 @@ Simulation::Simulation(const World& world, const SimConfig& config)
       planner.variation = rng() | 1u;  // never 0, the canonical plan
     }
   }
+  if (std::isfinite(config.start_heading_rad)) start.theta = config.start_heading_rad;
   start_ = start;
   plan_ = PlanCoverage(caster_, planner, Vec2{start.x, start.y});
   if (plan_.waypoints.empty()) throw WorldError(world.name + ": no free space for the robot near the start pose");

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -43,6 +44,9 @@ struct SimConfig {
   // true: the seed also varies the cleaning plan (start pose, room order, lane axis and side, wall
   // direction), as one home's cleanings differ; false: the world's start pose and canonical plan.
   bool vary_plan = true;
+  // The robot's heading at the start in the world frame (NaN: the world's or the seed's). 0 on a
+  // world drawn with its walls along the axes starts the robot square to them, as from a dock.
+  double start_heading_rad = std::numeric_limits<double>::quiet_NaN();
   double duration_min = 35.0;
   PlannerConfig planner;
   MotionLimits motion;

@@ -163,6 +163,10 @@ std::vector<BadField> BadFields() {
       INT_FIELD(front_end.min_start_hits, (std::vector<double>{-1.0, -2e9, 1e9})),
       FLOAT_FIELD(front_end.redeskew_min_m, kNonNegative),
       FLOAT_FIELD(front_end.redeskew_min_rad, kNonNegative),
+      // A turn past 40 degrees would put the walls near the grid's diagonals; a band wider than half
+      // the turn would leave walls that needed it near the axes.
+      FLOAT_FIELD(front_end.grid_turn_rad, (std::vector<double>{-1.0, kNaN, kInf, 1.0, 0.2})),
+      FLOAT_FIELD(front_end.grid_turn_band_rad, (std::vector<double>{-1.0, kNaN, kInf, 0.2})),
       // The coarse pose search and the weak-match rebuild, unchecked until fuzz/fuzz_mapper_config.cpp
       // found e.g. kernel_radius_cells = INT_MIN, sigma_m = NaN or 1e-30, or angle_window_rad = NaN
       // overflowing int casts in rotation_search.cpp after a rejected registration.
