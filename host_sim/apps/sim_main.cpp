@@ -36,6 +36,7 @@ struct Options {
   bool front_end_only = false;
   bool fixed_plan = false;
   double start_heading_rad = std::numeric_limits<double>::quiet_NaN();
+  double grid_turn_deg = -1.0;  // < 0: the configuration's
   std::string load_map;
   std::string save_map;
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
@@ -180,6 +181,11 @@ dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfi
   config.back_end.enable = !opt.front_end_only;
   config.front_end.gyro_heading = opt.heading == "gyro";
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
+  if (opt.grid_turn_deg == 0.0) config.front_end.grid_turn_rad = config.front_end.grid_turn_band_rad = 0.0f;
+  if (opt.grid_turn_deg > 0.0) {
+    config.front_end.grid_turn_rad = static_cast<float>(opt.grid_turn_deg * M_PI / 180.0);
+    config.front_end.grid_turn_band_rad = std::fmin(config.front_end.grid_turn_band_rad, 0.5f * config.front_end.grid_turn_rad);
+  }
   config.localisation.unknown_start = !opt.load_map.empty() && !opt.start_pose_given;
   config.localisation.localise_only = opt.localise_only;
   if (!opt.unsettle_after.empty()) {
@@ -375,6 +381,8 @@ void AddSensorOptions(CLI::App& app, Options& opt) {
   app.add_option("--lidar-noise", opt.lidar_noise, "range noise of the simulated lidar: sigma = BASE + FRACTION x range "
                  "(metres, fraction; default: the model's, ld06 0.01,0.005, xv11 0.01,0.01); 0,0: exact ranges")
       ->expected(2)->delimiter(',')->check(CLI::Range(0.0, 1.0));
+  app.add_option("--grid-turn", opt.grid_turn_deg, "turn a new map's grid this far off walls that lie along its axes at the start "
+                 "(degrees; FrontEndConfig::grid_turn_rad, default 15; 0: never)")->check(CLI::Range(0.0, 40.0));
   app.add_flag("--ideal-wheels", opt.ideal_wheels, "wheel odometry without calibration error or slips (ticks still quantise)");
 }
 
