@@ -1,6 +1,6 @@
 // The dominant wall direction of a scan, modulo 90 degrees (a home's walls meet mostly at right
 // angles). The front end turns a new map's grid away from its walls when they would lie along the
-// grid's axes (FrontEnd::ChooseGridTurn): a noisy wall along a cell row is a band whose cells all
+// grid's axes (FrontEnd::TurnFrameFromWalls): a noisy wall along a cell row is a band whose cells all
 // quantise the same way, so the map cannot hold its heading to better than half a cell over the
 // wall's length; a wall that crosses rows and columns averages that out. Measured (apartment,
 // seeds 1-10, the robot started square to the walls as from a dock): LocErr_ave 0.058 m, 0.023 m
