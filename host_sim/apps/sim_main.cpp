@@ -181,7 +181,7 @@ dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfi
   config.back_end.enable = !opt.front_end_only;
   config.front_end.gyro_heading = opt.heading == "gyro";
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
-  if (opt.grid_turn_deg == 0.0) config.front_end.grid_turn_rad = config.front_end.grid_turn_band_rad = 0.0f;
+  if (opt.grid_turn_deg == 0.0) config.front_end.grid_turn_rad = 0.0f;
   if (opt.grid_turn_deg > 0.0) {
     config.front_end.grid_turn_rad = static_cast<float>(opt.grid_turn_deg * M_PI / 180.0);
     config.front_end.grid_turn_band_rad = std::fmin(config.front_end.grid_turn_band_rad, 0.5f * config.front_end.grid_turn_rad);
@@ -311,7 +311,6 @@ int Run(const Options& opt) {
   PrintSummary(opt, mapper, run, metrics);
   return 0;
 }
-
 
 // The run: world, plan, device files, maps, what happens in the home.
 void AddRunOptions(CLI::App& app, Options& opt) {

@@ -27,7 +27,6 @@ Tracked Run(float noise_m, float turn_rad) {
   dpcr::MapperConfig config;
   config.lidar.range_noise_m = noise_m;
   config.front_end.grid_turn_rad = turn_rad;
-  if (turn_rad == 0.0f) config.front_end.grid_turn_band_rad = 0.0f;
   REQUIRE(mapper->Init(config) == dpcr::Status::kOk);
   const dpcr::test::SyntheticRun<MapperType> run(8.0f, 120, 450);
   Tracked t;
