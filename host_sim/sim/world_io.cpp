@@ -252,6 +252,8 @@ World ParseWorldText(const std::string& text, const std::string& source_name) {
   if (world.rooms.empty()) AddWholeWorldRoom(&world, source_name, line_no);
   CheckWorldLimits(world, source_name);
   CutDoors(&world);
+  // A door can span a whole wall: the simulator needs something left for the lidar to see.
+  if (world.segments.empty() && world.circles.empty()) Fail(source_name, line_no, "the doors cut away every wall");
   return world;
 }
 

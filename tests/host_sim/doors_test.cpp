@@ -74,6 +74,12 @@ TEST_CASE("The world file's door takes 'leaf' and nothing else") {
   CHECK(leaves == 4);
 }
 
+TEST_CASE("A world whose doors cut away every wall is rejected") {
+  REQUIRE_THROWS_WITH(ParseWorldText("wall 0 0 4 0\ndoor -1 0 5 0\nroom r 0 -1 4 1\n", "w"),
+                      Catch::Contains("w:3:") && Catch::Contains("every wall"));
+  CHECK(ParseWorldText("wall 0 0 4 0\nwall 0 1 4 1\ndoor -1 0 5 0\n", "w").segments.size() == 1);
+}
+
 TEST_CASE("With doors on, the lidar sees closed doors and the robot still covers every room") {
   SimConfig config;
   config.duration_min = 8.0;
