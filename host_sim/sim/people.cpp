@@ -7,7 +7,7 @@
 namespace dpcr::sim {
 
 People::People(const PeopleConfig& config, const std::vector<Vec2>& tour, std::uint64_t seed, double end_s)
-    : radius_m_(config.radius_m) {
+    : radius_m_(config.radius_m), robot_clearance_m_(config.robot_clearance_m) {
   if (config.count <= 0 || tour.size() < 2) return;
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -41,6 +41,16 @@ Vec2 People::PositionAt(std::size_t person, double t_s) const {
   return s.a + u * (s.b - s.a);
 }
 
+Vec2 People::PositionBeside(std::size_t person, double t_s, Vec2 robot) const {
+  const Vec2 p = PositionAt(person, t_s);
+  const Vec2 away = p - robot;
+  const double d = Norm(away);
+  if (d >= robot_clearance_m_) return p;
+  // Exactly at the robot's centre (a walk through it): aside along +y, any side will do.
+  const Vec2 unit = d > 1e-9 ? (1.0 / d) * away : Vec2{0.0, 1.0};
+  return robot + robot_clearance_m_ * unit;
+}
+
 std::vector<Vec2> People::StandingSpots() const {
   std::vector<Vec2> spots;
   for (const std::vector<Stretch>& walk : walks_) {
@@ -53,11 +63,11 @@ std::vector<Vec2> People::StandingSpots() const {
   return spots;
 }
 
-double People::Cast(Vec2 origin, double angle_rad, double t_s, double max_range_m) const {
+double People::Cast(Vec2 origin, double angle_rad, double t_s, double max_range_m, Vec2 robot) const {
   const Vec2 dir{std::cos(angle_rad), std::sin(angle_rad)};
   double best = -1.0;
   for (std::size_t p = 0; p < walks_.size(); ++p) {
-    const Vec2 c = PositionAt(p, t_s) - origin;
+    const Vec2 c = PositionBeside(p, t_s, robot) - origin;
     const double along = Dot(c, dir);
     const double r2 = radius_m_ * radius_m_;
     const double off2 = Dot(c, c) - along * along;

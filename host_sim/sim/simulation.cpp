@@ -188,7 +188,8 @@ bool Simulation::Step(SimEvent* out) {
     beam.range_m = SimulateBeam(caster_, lidar, sensor, angle, &lidar_rng_);
     if (people_.size() > 0) {
       // A person in front of the wall: the beam returns from their legs.
-      const double d = people_.Cast(Vec2{sensor.x, sensor.y}, sensor.theta + angle, static_cast<double>(beam_us) * 1e-6, lidar.max_range_m);
+      const double d = people_.Cast(Vec2{sensor.x, sensor.y}, sensor.theta + angle, static_cast<double>(beam_us) * 1e-6,
+                                    lidar.max_range_m, Vec2{pose_.x, pose_.y});
       if (d >= lidar.min_range_m && (beam.range_m <= 0.0f || d < static_cast<double>(beam.range_m))) beam.range_m = static_cast<float>(d);
     }
     if (doors_.size() > 0) {

@@ -68,7 +68,28 @@ TEST_CASE("People walk the tour and block beams in front of them") {
   // A beam aimed at the person returns at the near side of their legs; one aimed away does not.
   const Vec2 p = people.PositionAt(0, 1.0);
   const Vec2 from{p.x - 2.0, p.y};
-  CHECK(people.Cast(from, 0.0, 1.0, 12.0) == Approx(2.0 - config.radius_m).margin(1e-9));
-  CHECK(people.Cast(from, 3.14159265358979, 1.0, 12.0) < 0.0);
-  CHECK(people.Cast(from, 0.0, 1.0, 1.0) < 0.0);  // beyond the range
+  CHECK(people.Cast(from, 0.0, 1.0, 12.0, from) == Approx(2.0 - config.radius_m).margin(1e-9));
+  CHECK(people.Cast(from, 3.14159265358979, 1.0, 12.0, from) < 0.0);
+  CHECK(people.Cast(from, 0.0, 1.0, 1.0, from) < 0.0);  // beyond the range
+}
+
+TEST_CASE("People step aside from the robot instead of walking through it") {
+  const std::vector<Vec2> tour{{0.0, 0.0}, {4.0, 0.0}, {4.0, 4.0}};
+  PeopleConfig config;
+  config.count = 1;
+  config.stand_probability = 0.0;
+  People people(config, tour, 7, 60.0);
+  const Vec2 walk = people.PositionAt(0, 1.0);
+  // The robot 0.1 m from where the walk is: the person stands clear of it, on the same side.
+  const Vec2 robot{walk.x + 0.1, walk.y};
+  const Vec2 beside = people.PositionBeside(0, 1.0, robot);
+  CHECK(Norm(beside - robot) == Approx(config.robot_clearance_m).margin(1e-9));
+  CHECK(beside.x < robot.x);
+  // Far from the robot: where the walk is.
+  CHECK(Norm(people.PositionBeside(0, 1.0, Vec2{walk.x + 3.0, walk.y}) - walk) < 1e-12);
+  // The lidar at the robot's centre never sees legs closer than the clearance less their radius.
+  for (int k = 0; k < 64; ++k) {
+    const double d = people.Cast(robot, 0.09817477042468103 * k, 1.0, 12.0, robot);
+    if (d >= 0.0) CHECK(d >= config.robot_clearance_m - config.radius_m - 1e-9);
+  }
 }
