@@ -38,7 +38,7 @@ bool LidarOk(const LidarConfig& l) {
   return In(l.min_range_m, 0.0f, kMaxRangeM) && AboveUpTo(l.max_range_m, l.min_range_m, kMaxRangeM) &&
          In(l.no_return_free_m, 0.0f, l.max_range_m) && In(l.mount.x, -kMaxMountOffsetM, kMaxMountOffsetM) &&
          In(l.mount.y, -kMaxMountOffsetM, kMaxMountOffsetM) && In(l.mount.theta, -2.0f * kPi, 2.0f * kPi) &&
-         In(l.range_noise_m, 0.0f, 0.5f);
+         In(l.range_noise_m, 0.0f, 0.5f) && In(l.near_weight_range_m, 0.0f, 10.0f);
 }
 
 bool LinesOk(const LineExtractorConfig& c) {
@@ -58,7 +58,8 @@ bool PlicpOk(const PlicpConfig& c) {
                     In(c.trim_floor_m, 0.0f, c.gate_m) && In(c.fine_phase_step_m, 0.0f, 10.0f) &&
                     In(c.fine_phase_step_rad, 0.0f, kPi) && AboveUpTo(c.huber_m, 0.0f, 10.0f) &&
                     In(c.local_line_weight, 0.0f, 1.0f) && In(c.point_weight, 0.0f, 1.0f) &&
-                    In(c.min_step_m, 0.0f, 1.0f) && In(c.min_step_rad, 0.0f, 1.0f);
+                    In(c.min_step_m, 0.0f, 1.0f) && In(c.min_step_rad, 0.0f, 1.0f) &&
+                    In(c.near_weight_range_m, 0.0f, 10.0f);
   const bool accept = In(c.min_correspondences, 3, kMaxCount) && In(c.min_inlier_ratio, 0.0f, 1.0f) &&
                       AboveUpTo(c.max_mean_residual_m, 0.0f, 10.0f) &&
                       In(c.min_translation_information, 0.0f, kMaxInformation) &&

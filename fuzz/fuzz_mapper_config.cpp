@@ -94,7 +94,7 @@ void Reference(M& m, dpcr::ReferenceConfig& c) {
 template <class M>
 void Plicp(M& m, dpcr::PlicpConfig& c) {
   m(c.max_iterations), m(c.gate_m), m(c.trim), m(c.trim_floor_m), m(c.fine_phase_step_m), m(c.fine_phase_step_rad),
-      m(c.huber_m), m(c.local_line_weight), m(c.point_weight), m(c.min_step_m), m(c.min_step_rad),
+      m(c.huber_m), m(c.near_weight_range_m), m(c.local_line_weight), m(c.point_weight), m(c.min_step_m), m(c.min_step_rad),
       m(c.min_correspondences), m(c.min_inlier_ratio), m(c.max_mean_residual_m), m(c.min_translation_information),
       m(c.max_correction_m), m(c.max_correction_rad);
 }
@@ -105,7 +105,8 @@ void ForEachField(M& m, dpcr::MapperConfig& c) {
   m(g.resolution_m), m(g.hit_delta), m(g.miss_delta), m(g.clamp_max), m(g.clamp_min), m(g.settle_at_clamp), m(g.hit_margin_m);
   m(g.unsettle_occupied_after), m(g.unsettle_free_after), m(g.drop_hits_behind_settled_cells), m(g.unsettle_miss_margin_m);
   dpcr::LidarConfig& l = c.lidar;
-  m(l.min_range_m), m(l.max_range_m), m(l.no_return_free_m), m(l.mount), m(l.drop_isolated_returns), m(l.range_noise_m);
+  m(l.min_range_m), m(l.max_range_m), m(l.no_return_free_m), m(l.mount), m(l.drop_isolated_returns), m(l.range_noise_m),
+      m(l.near_weight_range_m);
   dpcr::FrontEndConfig& f = c.front_end;
   m(f.submap_scans), m(f.submap_line_period), m(f.region_line_period), m(f.second_registration_period),
       m(f.submap_miss_range_m), m(f.region_miss_range_m), m(f.submap_refit_gate_m), m(f.submap_refit_min_points),

@@ -27,11 +27,13 @@ struct DeviceOptions {
 // What the mapper is told of a lidar model, the same in dpcr-firmware and dpcr-replay --uart: an
 // XV-11's junk readings are dropped (LidarConfig::drop_isolated_returns), and each model's range
 // noise at 3 m (LidarConfig::range_noise_m) is the simulator's model of it: an LD06 1 cm + 0.5 %
-// of the range, an XV-11 1 cm + 1 % (host_sim/sim/sensors.hpp).
+// of the range, an XV-11 1 cm + 1 % (host_sim/sim/sensors.hpp); both sit at a vacuum's ankle
+// height, where near returns weigh less (LidarConfig::near_weight_range_m).
 inline void ApplyLidarModel(LidarKind kind, LidarConfig* lidar) {
   const bool xv11 = kind == LidarKind::kXv11;
   lidar->drop_isolated_returns = xv11;
   lidar->range_noise_m = xv11 ? 0.04f : 0.025f;
+  lidar->near_weight_range_m = kVacuumNearWeightRangeM;
 }
 
 }  // namespace dpcr

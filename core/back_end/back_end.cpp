@@ -23,7 +23,7 @@ Eigen::Matrix3f IntoErrorFrame(const Eigen::Matrix3f& information, const Pose2& 
 }  // namespace
 
 void BackEnd::Init(const BackEndConfig& config, float region_width_m, const ReferenceConfig& reference) {
-  config_ = config;
+  config_ = &config;
   region_width_m_ = region_width_m;
   reference_ = reference;
   counters_ = BackEndCounters{};
@@ -44,15 +44,15 @@ void BackEnd::Push(std::int32_t job) {
 
 void BackEnd::AddRegion(Span<RegionalMap> regions, int index, int from) {
   PoseGraph& g = *s_.graph;
-  if (!config_.enable || index != g.vertex_count()) return;
+  if (!config_->enable || index != g.vertex_count()) return;
   if (g.AddVertex(regions[static_cast<std::size_t>(index)].anchor) != Status::kOk) return;
   if (from < 0) return;
   GraphEdge e;
   e.from = from;
   e.to = index;
   e.measurement = Between(regions[static_cast<std::size_t>(from)].anchor, regions[static_cast<std::size_t>(index)].anchor);
-  const float it = 1.0f / (config_.sequence_sigma_m * config_.sequence_sigma_m);
-  const float ir = 1.0f / (config_.sequence_sigma_rad * config_.sequence_sigma_rad);
+  const float it = 1.0f / (config_->sequence_sigma_m * config_->sequence_sigma_m);
+  const float ir = 1.0f / (config_->sequence_sigma_rad * config_->sequence_sigma_rad);
   e.information = Eigen::Vector3f(it, it, ir).asDiagonal();
   e.kind = EdgeKind::kSequence;
   if (g.AddOrReplaceEdge(e) == Status::kOk) {
@@ -63,13 +63,13 @@ void BackEnd::AddRegion(Span<RegionalMap> regions, int index, int from) {
 }
 
 void BackEnd::OnRegionLeft(Span<RegionalMap> regions, int index) {
-  if (!config_.enable || index < 0 || index >= s_.graph->vertex_count()) return;
+  if (!config_->enable || index < 0 || index >= s_.graph->vertex_count()) return;
   const RegionalMap& left = regions[static_cast<std::size_t>(index)];
-  if (left.scans_inserted < static_cast<std::uint32_t>(config_.min_scans)) return;
-  const float reach = config_.neighbour_factor * region_width_m_;
+  if (left.scans_inserted < static_cast<std::uint32_t>(config_->min_scans)) return;
+  const float reach = config_->neighbour_factor * region_width_m_;
   for (int i = 0; i < s_.graph->vertex_count(); ++i) {
     const RegionalMap& other = regions[static_cast<std::size_t>(i)];
-    if (i == index || other.scans_inserted < static_cast<std::uint32_t>(config_.min_scans)) continue;
+    if (i == index || other.scans_inserted < static_cast<std::uint32_t>(config_->min_scans)) continue;
     if (std::hypot(other.anchor.x - left.anchor.x, other.anchor.y - left.anchor.y) > reach) continue;
     const int older = i < index ? i : index, newer = i < index ? index : i;
     Push(older * kPairBase + newer);
@@ -88,8 +88,8 @@ BackEnd::StepResult BackEnd::Step(Span<RegionalMap> regions) {
     } else if (search_.done()) {
       out.loop_search_done = true;
     } else {
-      (void)search_.Continue(*s_.match_grid, Span<const Point2>(s_.cloud.data(), search_points_), config_.search,
-                             s_.rotated, static_cast<std::uint32_t>(config_.search_evaluations_per_step));
+      (void)search_.Continue(*s_.match_grid, Span<const Point2>(s_.cloud.data(), search_points_), config_->search,
+                             s_.rotated, static_cast<std::uint32_t>(config_->search_evaluations_per_step));
     }
     return out;
   }
@@ -113,11 +113,11 @@ void BackEnd::BuildReference(const RegionalMap& map) {
 }
 
 Eigen::Matrix3f BackEnd::RegistrationInformation(const Eigen::Matrix3f& hessian, const Pose2& measurement) const {
-  const float scale = 1.0f / (config_.residual_sigma_m * config_.residual_sigma_m * config_.correlated_points);
+  const float scale = 1.0f / (config_->residual_sigma_m * config_->residual_sigma_m * config_->correlated_points);
   Eigen::Matrix3f info = IntoErrorFrame(hessian * scale, measurement);
-  info(0, 0) += 1.0f / (config_.floor_sigma_m * config_.floor_sigma_m);
-  info(1, 1) += 1.0f / (config_.floor_sigma_m * config_.floor_sigma_m);
-  info(2, 2) += 1.0f / (config_.floor_sigma_rad * config_.floor_sigma_rad);
+  info(0, 0) += 1.0f / (config_->floor_sigma_m * config_->floor_sigma_m);
+  info(1, 1) += 1.0f / (config_->floor_sigma_m * config_->floor_sigma_m);
+  info(2, 2) += 1.0f / (config_->floor_sigma_rad * config_->floor_sigma_rad);
   return info;
 }
 
@@ -128,19 +128,19 @@ bool BackEnd::MatchMaps(Span<RegionalMap> regions, int older, int newer) {
   const std::size_t ref_cells = CountObstacleCells(*ref.grid, reference_.obstacle_threshold);
   const std::size_t target_cells = CountObstacleCells(*target.grid, reference_.obstacle_threshold);
   const std::size_t n = CollectObstacleCloud(*target.grid, reference_.obstacle_threshold, target_cells,
-                                             Span<Point2>(s_.cloud.data(), static_cast<std::size_t>(config_.max_cloud_points)));
+                                             Span<Point2>(s_.cloud.data(), static_cast<std::size_t>(config_->max_cloud_points)));
   if (n < 20 || ref_cells < 20) return false;
   BuildReference(ref);
   const Pose2 initial = Between(ref.anchor, target.anchor);
   const RegistrationResult r = RegisterImproved(*s_.reference, Span<const Point2>(s_.cloud.data(), n), initial, nullptr,
-                                                config_.registration, s_.correspondences);
+                                                config_->registration, s_.correspondences);
   if (r.verdict != Status::kOk) return false;
   // Eq. 11 on the thinned cloud: matched points over the mean cloud size, both counted at the
   // thinning of the target (the reference's cells thinned alike).
   const float thinning = static_cast<float>(n) / static_cast<float>(target_cells);
   const float match_rate = 2.0f * static_cast<float>(r.inliers) /
                            (static_cast<float>(n) + thinning * static_cast<float>(ref_cells));
-  if (match_rate < config_.min_match_rate) return false;
+  if (match_rate < config_->min_match_rate) return false;
   GraphEdge e;
   e.from = older;
   e.to = newer;
@@ -156,7 +156,7 @@ bool BackEnd::MatchMaps(Span<RegionalMap> regions, int older, int newer) {
 }
 
 void BackEnd::Optimize(Span<RegionalMap> regions) {
-  const OptimizationResult r = s_.graph->Optimize(config_.optimizer);
+  const OptimizationResult r = s_.graph->Optimize(config_->optimizer);
   if (r.status != Status::kOk) return;
   ++counters_.optimizations;
   counters_.optimizer_iterations += static_cast<std::uint32_t>(r.iterations);
@@ -171,7 +171,7 @@ void BackEnd::WriteAnchors(Span<RegionalMap> regions) const {
 bool BackEnd::BeginLoopClosure(Span<RegionalMap> regions, int region, int from, Span<const Point2> cloud,
                                const Pose2& submap_world, float path_m) {
   PoseGraph& g = *s_.graph;
-  if (!config_.enable || region < 0 || from < 0 || region == from || region >= g.vertex_count() ||
+  if (!config_->enable || region < 0 || from < 0 || region == from || region >= g.vertex_count() ||
       from >= g.vertex_count() || cloud.size() < 20) {
     return false;
   }
@@ -180,15 +180,15 @@ bool BackEnd::BeginLoopClosure(Span<RegionalMap> regions, int region, int from, 
   // Where is the submap in the map? A search over the window the drift allows, on a grid in
   // memory lent by the region reference until the search is done.
   s_.match_grid->Attach(s_.reference->LendTable());
-  s_.match_grid->Build(*map.grid, map.grid->box(), config_.match_grid_coarsen, reference_.obstacle_threshold);
-  const std::size_t stride = (cloud.size() + static_cast<std::size_t>(config_.search_points) - 1) /
-                             static_cast<std::size_t>(config_.search_points);
+  s_.match_grid->Build(*map.grid, map.grid->box(), config_->match_grid_coarsen, reference_.obstacle_threshold);
+  const std::size_t stride = (cloud.size() + static_cast<std::size_t>(config_->search_points) - 1) /
+                             static_cast<std::size_t>(config_->search_points);
   std::size_t n = 0;
   for (std::size_t i = 0; i < cloud.size() && n < s_.cloud.size(); i += stride) s_.cloud[n++] = cloud[i];
   const Pose2 guess = Between(map.anchor, submap_world);
-  const float window_m = std::fmin(config_.search_base_m + config_.search_per_metre_m * path_m, config_.search_max_m);
-  const float window_rad = std::fmin(config_.search_base_rad + config_.search_per_metre_rad * path_m, config_.search_max_rad);
-  search_.Begin(*s_.match_grid, Span<const Point2>(s_.cloud.data(), n), guess, window_m, window_rad, config_.search);
+  const float window_m = std::fmin(config_->search_base_m + config_->search_per_metre_m * path_m, config_->search_max_m);
+  const float window_rad = std::fmin(config_->search_base_rad + config_->search_per_metre_rad * path_m, config_->search_max_rad);
+  search_.Begin(*s_.match_grid, Span<const Point2>(s_.cloud.data(), n), guess, window_m, window_rad, config_->search);
   search_region_ = region;
   search_begun_this_scan_ = true;
   search_from_ = from;
@@ -222,13 +222,13 @@ LoopClosureResult BackEnd::FinishLoopClosure(Span<RegionalMap> regions, Span<con
   // Refined by PLICP against the map's lines.
   BuildReference(map);
   const RegistrationResult r =
-      RegisterImproved(*s_.reference, cloud, start, nullptr, config_.closure_registration, s_.correspondences);
+      RegisterImproved(*s_.reference, cloud, start, nullptr, config_->closure_registration, s_.correspondences);
   trace_.refinement = r.verdict;
   trace_.inlier_ratio = r.inlier_ratio;
   trace_.mean_residual_m = r.mean_residual_m;
   // Refined from the guess (no clear peak): only a small correction is trusted, as on loop entry;
   // PLICP from a guess metres or degrees off finds the nearest look-alike as readily as the map.
-  const bool verified = found.verdict == Status::kOk || WithinSearchBaseWindow(config_, Between(start, r.pose));
+  const bool verified = found.verdict == Status::kOk || WithinSearchBaseWindow(*config_, Between(start, r.pose));
   if (r.verdict != Status::kOk || !verified) {
     ++counters_.loop_closures_rejected;
     out.verdict = Status::kRejected;
@@ -246,7 +246,7 @@ LoopClosureResult BackEnd::FinishLoopClosure(Span<RegionalMap> regions, Span<con
 bool BackEnd::AddClosure(Span<RegionalMap> regions, int region, int from, const RegistrationResult& r,
                          const Pose2& submap_world, float search_score) {
   PoseGraph& g = *s_.graph;
-  if (!config_.enable || region < 0 || from < 0 || region == from || region >= g.vertex_count() ||
+  if (!config_->enable || region < 0 || from < 0 || region == from || region >= g.vertex_count() ||
       from >= g.vertex_count()) {
     return false;
   }
@@ -264,7 +264,7 @@ bool BackEnd::AddClosure(Span<RegionalMap> regions, int region, int from, const 
   // closely as a first registration does (a look-alike one doorway over fitted at 6 cm).
   const Pose2 change = Between(Between(regions[static_cast<std::size_t>(region)].anchor,
                                        regions[static_cast<std::size_t>(from)].anchor), z);
-  if (!WithinSearchBaseWindow(config_, change) && r.mean_residual_m > config_.large_closure_max_residual_m) {
+  if (!WithinSearchBaseWindow(*config_, change) && r.mean_residual_m > config_->large_closure_max_residual_m) {
     ++counters_.loop_closures_rejected;
     return false;
   }
@@ -276,10 +276,10 @@ bool BackEnd::AddClosure(Span<RegionalMap> regions, int region, int from, const 
   e.kind = EdgeKind::kLoop;
   // ...and, unless the search found it unmistakably, the graph must follow it to within what
   // PLICP alone is trusted with (BackEndConfig::unfollowed_closure_min_score).
-  const bool unmistakable = search_score >= config_.unfollowed_closure_min_score;
-  const Status added = g.AddEdgeIfConsistent(e, config_.optimizer, config_.max_edge_chi2,
-                                             unmistakable ? PoseGraph::kUnbounded : config_.search_base_m,
-                                             unmistakable ? PoseGraph::kUnbounded : config_.search_base_rad);
+  const bool unmistakable = search_score >= config_->unfollowed_closure_min_score;
+  const Status added = g.AddEdgeIfConsistent(e, config_->optimizer, config_->max_edge_chi2,
+                                             unmistakable ? PoseGraph::kUnbounded : config_->search_base_m,
+                                             unmistakable ? PoseGraph::kUnbounded : config_->search_base_rad);
   trace_.graph = added;
   if (added != Status::kOk) {
     ++counters_.loop_closures_rejected;

@@ -85,6 +85,8 @@ class BackEnd {
 
   // `reference`: how the regional maps become registration references (the front end's, for the
   // lidar's noise: ReferenceForNoise); its obstacle threshold also picks the maps' obstacle cells.
+  // `config` is kept by reference, not copied (the vacuum's RAM): it must outlive the back end,
+  // as the front end's own MapperConfig does.
   void Init(const BackEndConfig& config, float region_width_m, const ReferenceConfig& reference);
 
   // A region was created (index == its vertex); `from` is the region the robot came from (-1 for
@@ -142,7 +144,7 @@ class BackEnd {
   void BuildReference(const RegionalMap& map);
 
   BackEndStorage s_;
-  BackEndConfig config_;
+  const BackEndConfig* config_ = nullptr;  // set by Init
   float region_width_m_ = 4.0f;
   ReferenceConfig reference_;  // set by Init
   BackEndCounters counters_;

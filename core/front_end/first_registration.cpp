@@ -5,8 +5,14 @@
 
 namespace dpcr {
 
-PlicpConfig FirstRegistrationPlicp(const MapperConfig& config, bool wheels) {
+PlicpConfig FirstRegistrationBase(const MapperConfig& config) {
   PlicpConfig c = config.front_end.first_registration;
+  c.near_weight_range_m = config.lidar.near_weight_range_m;
+  return c;
+}
+
+PlicpConfig FirstRegistrationPlicp(const MapperConfig& config, bool wheels) {
+  PlicpConfig c = FirstRegistrationBase(config);
   if (wheels) c.trim_floor_m = std::min(std::max(c.trim_floor_m, 2.0f * config.lidar.range_noise_m), c.gate_m);
   return c;
 }

@@ -21,7 +21,11 @@ struct FirstRegistrationStats {
   std::uint32_t search_grid_builds = 0;
 };
 
-// The first registration's PLICP settings (config.front_end.first_registration) for a scan whose
+// config.front_end.first_registration with the lidar's weighting of near returns
+// (LidarConfig::near_weight_range_m): what every first registration of a scan starts from.
+PlicpConfig FirstRegistrationBase(const MapperConfig& config);
+
+// The first registration's PLICP settings (FirstRegistrationBase) for a scan whose
 // motion the wheels measured or not: with them the scan is de-skewed by measurement, and
 // residuals of the lidar's own noise are not outliers: the trim floor is raised to twice
 // LidarConfig::range_noise_m (up to the gate). Without them a residual also holds the de-skew's

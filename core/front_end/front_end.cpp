@@ -50,7 +50,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   InvalidateRegionReference();
   scans_since_submap_lines_ = scans_since_second_ = second_registrations_since_region_lines_ = 0;
   scan_marker_.Reset();
-  back_end_.Init(config.back_end, config.front_end.region_width_m, ReferenceForNoise(config.front_end.region_reference, config));
+  back_end_.Init(config_.back_end, config.front_end.region_width_m, ReferenceForNoise(config.front_end.region_reference, config));
   path_m_ = 0.0f;
   last_world_ = Pose2::Identity();
   last_scan_region_ = -1;
@@ -244,11 +244,12 @@ void FrontEnd::FlushPendingScan(Span<const Beam> beams, std::int64_t stamp_us, c
     // Registered again from where it was placed (not after a rejection: that pose is a guess).
     bool registered = false;
     if (!pending_.rejected && !pending_.first) {
+      const PlicpConfig plicp = FirstRegistrationBase(config_);
       const RegistrationResult r =
           RegisterFirst(*s_.submap_reference, nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
                         Span<const Point2>(s_.hits.data(), projected.hits),
                         pending_.since_before_us > 0 ? pending_.before : pending_.pose, pending_.pose, f,
-                        s_.correspondences, &fe_counters_.search, kPriorXyWithoutWheels, kPriorThetaWithoutHeading);
+                        s_.correspondences, &fe_counters_.search, kPriorXyWithoutWheels, kPriorThetaWithoutHeading, &plicp);
       if (r.verdict == Status::kOk) {
         at = r.pose;
         registered = true;
@@ -530,12 +531,13 @@ RegistrationResult FrontEnd::RegisterRedeskewed(Span<const Beam> beams, const Sc
   bent_ = bend_m >= 2.0f * f.redeskew_min_m || bend_rad >= 2.0f * f.redeskew_min_rad;
   if (bend_m < f.redeskew_min_m && bend_rad < f.redeskew_min_rad) return first;
   ++fe_counters_.redeskews;
+  const PlicpConfig plicp = FirstRegistrationBase(config_);
   const ScanMotion again(odometry_, f.gyro_heading, found, motion.stamp_us());
   *projected = ProjectScan(beams, config_.lidar, again, s_.hits, s_.free_ends);
   const RegistrationResult second =
       RegisterFirst(*s_.submap_reference, nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
                     Span<const Point2>(s_.hits.data(), projected->hits), pose_, first.pose, f, s_.correspondences, &fe_counters_.search,
-                    PriorXyScale(motion), PriorThetaScale(motion));
+                    PriorXyScale(motion), PriorThetaScale(motion), &plicp);
   if (second.verdict == Status::kOk) return second;
   if (first.verdict != Status::kOk) return bent_ ? TrackBent(second, first.pose) : second;
   // Only the first one was accepted: its points back.
@@ -552,9 +554,11 @@ RegistrationResult FrontEnd::RegisterFromConstantVelocity(std::size_t hits, std:
   const bool doubt_rad = f.odometry_doubt_rad > 0.0f && std::fabs(apart.theta) > f.odometry_doubt_rad;
   if (!doubt_m && !doubt_rad) return rejected;
   ++fe_counters_.odometry_doubted;
+  const PlicpConfig plicp = FirstRegistrationBase(config_);
   const RegistrationResult again =
       RegisterFirst(*s_.submap_reference, nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
-                    Span<const Point2>(s_.hits.data(), hits), pose_, guess, f, s_.correspondences, &fe_counters_.search);
+                    Span<const Point2>(s_.hits.data(), hits), pose_, guess, f, s_.correspondences, &fe_counters_.search, 1.0f, 1.0f,
+                    &plicp);
   if (again.verdict != Status::kOk) return rejected;
   ++fe_counters_.odometry_overruled;
   return again;

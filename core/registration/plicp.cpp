@@ -85,6 +85,13 @@ float TrimThreshold(const RegistrationReference& ref, Span<const Point2> target,
   return std::fmax(threshold, config.trim_floor_m);
 }
 
+// A target point's share by its distance from the target frame's origin (PlicpConfig::
+// near_weight_range_m): 1 beyond `range_m` (or with range_m 0), falling linearly to 0 at the origin.
+inline float NearWeight(Point2 p, float range_m) {
+  const float d2 = p.x * p.x + p.y * p.y;
+  return d2 >= range_m * range_m ? 1.0f : std::sqrt(d2) / range_m;
+}
+
 // What pass 2 found at one pose.
 struct Linearisation {
   NormalEquations ne;
@@ -119,7 +126,7 @@ Linearisation Linearise(const RegistrationReference& ref, Span<const Point2> tar
     const float r_abs = Residual(corr, w);
     if (r_abs > threshold || r_abs > config.gate_m) continue;
     const float huber = r_abs <= config.huber_m ? 1.0f : config.huber_m / r_abs;
-    const float weight = corr.weight * huber;
+    const float weight = corr.weight * huber * NearWeight(target[i], config.near_weight_range_m);
     const float rx = w.x - pose.x, ry = w.y - pose.y;  // d(w)/dθ = (-ry, rx)
     ++inliers;
     residual_sum += r_abs;

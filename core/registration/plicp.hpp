@@ -25,6 +25,10 @@ struct PlicpConfig {
   float fine_phase_step_m = 0.01f;
   float fine_phase_step_rad = 0.005f;
   float huber_m = 0.03f;  // robust kernel: quadratic below, linear above
+  // Target points nearer than this to the target frame's origin (the robot, for a scan) weigh
+  // their distance / near_weight_range_m (0: all alike). The first registration takes
+  // LidarConfig::near_weight_range_m (why there).
+  float near_weight_range_m = 0.0f;
   // Fallbacks for points whose nearest reference cell owns no line: a local line from
   // the cell's 5x5 normal, else point-to-point; down-weighted, they keep corridors constrained.
   float local_line_weight = 0.5f;

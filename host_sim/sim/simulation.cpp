@@ -222,6 +222,7 @@ bool Simulation::Step(SimEvent* out) {
   lidar.max_range_m = static_cast<float>(config.lidar.max_range_m);
   lidar.mount = config.lidar.mount.ToPose2();
   lidar.range_noise_m = static_cast<float>(config.lidar.noise_base_m + 3.0 * config.lidar.noise_fraction);
+  lidar.near_weight_range_m = kVacuumNearWeightRangeM;  // both models are a vacuum's lidar
   return lidar;
 }
 

@@ -86,6 +86,7 @@ void AddPlicp(std::vector<BadField>* t, const std::string& prefix, dpcr::PlicpCo
   f("fine_phase_step_m", &dpcr::PlicpConfig::fine_phase_step_m, kNonNegative);
   f("fine_phase_step_rad", &dpcr::PlicpConfig::fine_phase_step_rad, kNonNegative);
   f("huber_m", &dpcr::PlicpConfig::huber_m, kPositive);
+  f("near_weight_range_m", &dpcr::PlicpConfig::near_weight_range_m, kNonNegative);
   f("local_line_weight", &dpcr::PlicpConfig::local_line_weight, kNonNegative);
   f("point_weight", &dpcr::PlicpConfig::point_weight, kNonNegative);
   f("min_step_m", &dpcr::PlicpConfig::min_step_m, kNonNegative);
@@ -131,6 +132,7 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(lidar.max_range_m, kPositive),
       FLOAT_FIELD(lidar.no_return_free_m, kNonNegative),
       FLOAT_FIELD(lidar.range_noise_m, kNonNegative),
+      FLOAT_FIELD(lidar.near_weight_range_m, kNonNegative),
       FLOAT_FIELD(lidar.mount.x, kOffset),
       FLOAT_FIELD(lidar.mount.y, kOffset),
       FLOAT_FIELD(lidar.mount.theta, kOffset),
