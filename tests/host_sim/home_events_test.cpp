@@ -55,12 +55,26 @@ TEST_CASE("Kidnaps that cannot fit the run are an error") {
   REQUIRE_THROWS_AS(Simulation(LoadBuiltinWorld("apartment"), config), WorldError);
 }
 
-TEST_CASE("People walk the tour and block beams in front of them") {
-  const std::vector<Vec2> tour{{0.0, 0.0}, {4.0, 0.0}, {4.0, 4.0}};
+namespace {
+
+// One person walking a three-waypoint tour without standing still.
+PeopleConfig OneWalker() {
   PeopleConfig config;
   config.count = 1;
   config.stand_probability = 0.0;
-  People people(config, tour, 7, 60.0);
+  return config;
+}
+
+People WalkTheTour(const PeopleConfig& config) {
+  const std::vector<Vec2> tour{{0.0, 0.0}, {4.0, 0.0}, {4.0, 4.0}};
+  return People(config, tour, 7, 60.0);
+}
+
+}  // namespace
+
+TEST_CASE("People walk the tour and block beams in front of them") {
+  const PeopleConfig config = OneWalker();
+  const People people = WalkTheTour(config);
   REQUIRE(people.size() == 1);
   // Walking: the position moves at the walking speed along the tour's edges.
   const Vec2 a = people.PositionAt(0, 1.0), b = people.PositionAt(0, 2.0);
@@ -74,11 +88,8 @@ TEST_CASE("People walk the tour and block beams in front of them") {
 }
 
 TEST_CASE("People step aside from the robot instead of walking through it") {
-  const std::vector<Vec2> tour{{0.0, 0.0}, {4.0, 0.0}, {4.0, 4.0}};
-  PeopleConfig config;
-  config.count = 1;
-  config.stand_probability = 0.0;
-  People people(config, tour, 7, 60.0);
+  const PeopleConfig config = OneWalker();
+  const People people = WalkTheTour(config);
   const Vec2 walk = people.PositionAt(0, 1.0);
   // The robot 0.1 m from where the walk is: the person stands clear of it, on the same side.
   const Vec2 robot{walk.x + 0.1, walk.y};
