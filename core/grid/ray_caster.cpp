@@ -105,8 +105,9 @@ int HitCells(const TiledGrid& grid, Point2 origin, Span<const Point2> hits, cons
     const Points4 p = LoadPoints4(hits, i);
     const Cells4 cells = CellsOf4(p.x, p.y, config.resolution_m);
     for (int lane = 0, n = LanesAt(i, hits.size()); lane < n; ++lane) {
-      const bool behind = screen && walls.Behind(hits[i + lane], cells[lane]);
-      scratch[i + lane] = behind ? kDroppedHit : cells[lane];
+      const std::size_t k = i + static_cast<std::size_t>(lane);
+      const bool behind = screen && walls.Behind(hits[k], cells[lane]);
+      scratch[k] = behind ? kDroppedHit : cells[lane];
       dropped += behind ? 1 : 0;
     }
   }
@@ -158,10 +159,11 @@ InsertionStats InsertRays(TiledGrid& grid, Point2 origin, Span<const Point2> hit
     const Float4 start_k = 1.0f - miss_range_m / d4;
     const Cells4 starts = CellsOf4(origin.x + start_k * dx4, origin.y + start_k * dy4, res);
     for (int lane = 0, n = LanesAt(i, hits.size()); lane < n; ++lane) {
-      if (scratch[i + lane] == kDroppedHit) continue;
+      const CellIndex hit_cell = scratch[i + static_cast<std::size_t>(lane)];
+      if (hit_cell == kDroppedHit) continue;
       const float d2 = d2_4[lane];
       if (d2 <= margin2) continue;
-      const CellIndex to = config.hit_margin_m > 0.0f ? ends[lane] : scratch[i + lane];  // exactly the hit's cell
+      const CellIndex to = config.hit_margin_m > 0.0f ? ends[lane] : hit_cell;  // exactly the hit's cell
       CellIndex from = start;
       float from_d = d4[lane];  // how far before the hit the segment starts
       if (miss_range_m > 0.0f && d2 > range2) {

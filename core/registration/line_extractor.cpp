@@ -289,11 +289,13 @@ void MergeCollinear(Span<LineFeature> lines, int count, std::uint16_t* alias, co
     bool merged_any = false;
     for (int i = 0; i < count; ++i) {
       if (alias[i] != i) continue;
+      LineFeature& into = lines[static_cast<std::size_t>(i)];
       for (int j = i + 1; j < count; ++j) {
-        if (alias[j] != j || !Mergeable(lines[i], lines[j], config)) continue;
-        const LineFeature m = Merged(lines[i], lines[j]);
+        const LineFeature& other = lines[static_cast<std::size_t>(j)];
+        if (alias[j] != j || !Mergeable(into, other, config)) continue;
+        const LineFeature m = Merged(into, other);
         if (m.rms > config.max_rms_cells) continue;
-        lines[i] = m;
+        into = m;
         alias[j] = static_cast<std::uint16_t>(i);
         ++st->merges;
         merged_any = true;
@@ -311,7 +313,7 @@ int CompactLines(Span<ObstacleCell> cells, Span<LineFeature> lines, int count, c
   for (int i = 0; i < count; ++i) {
     if (alias[i] == i) {
       final_id[i] = static_cast<std::uint16_t>(kept);
-      lines[static_cast<std::size_t>(kept++)] = lines[i];
+      lines[static_cast<std::size_t>(kept++)] = lines[static_cast<std::size_t>(i)];
     }
   }
   for (ObstacleCell& c : cells) {
