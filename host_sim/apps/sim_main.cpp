@@ -37,6 +37,7 @@ struct Options {
   bool fixed_plan = false;
   double start_heading_rad = std::numeric_limits<double>::quiet_NaN();
   double grid_turn_deg = -1.0;  // < 0: the configuration's
+  double near_weight_m = -1.0;  // < 0: a vacuum lidar's (kVacuumNearWeightRangeM)
   std::string load_map;
   std::string save_map;
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
@@ -177,6 +178,7 @@ dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfi
   dpcr::MapperConfig config;
   config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
   config.lidar.drop_isolated_returns = opt.lidar == "xv11";  // its junk readings
+  if (opt.near_weight_m >= 0.0) config.lidar.near_weight_range_m = static_cast<float>(opt.near_weight_m);
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
   config.front_end.gyro_heading = opt.heading == "gyro";
@@ -299,6 +301,7 @@ int Run(const Options& opt) {
   nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
   metrics["input"] = InputMetrics(opt, sim, sim_config);
   metrics["input"]["unsettle_after"] = {config.grid.unsettle_occupied_after, config.grid.unsettle_free_after};
+  metrics["input"]["near_weight_range_m"] = config.lidar.near_weight_range_m;
   AddRelocalisationFigures(opt, mapper, sim, run, recoveries, lost, align, &metrics);
   if (opt.spins > 0) metrics["spins"] = spins.Metrics();
   const dpcr::output::FusedMap fused = dpcr::output::RenderFused(mapper);
@@ -382,6 +385,8 @@ void AddSensorOptions(CLI::App& app, Options& opt) {
       ->expected(2)->delimiter(',')->check(CLI::Range(0.0, 1.0));
   app.add_option("--grid-turn", opt.grid_turn_deg, "turn a new map's grid this far off walls that lie along its axes at the start "
                  "(degrees; FrontEndConfig::grid_turn_rad, default 15; 0: never)")->check(CLI::Range(0.0, 40.0));
+  app.add_option("--near-weight", opt.near_weight_m, "returns within this distance of the robot weigh distance / this in the "
+                 "first registration (metres; LidarConfig::near_weight_range_m, default 0.5; 0: all alike)")->check(CLI::Range(0.0, 10.0));
   app.add_flag("--ideal-wheels", opt.ideal_wheels, "wheel odometry without calibration error or slips (ticks still quantise)");
 }
 
