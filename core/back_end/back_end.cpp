@@ -221,8 +221,9 @@ LoopClosureResult BackEnd::FinishLoopClosure(Span<RegionalMap> regions, Span<con
   const Pose2 start = (found.verdict == Status::kOk ? found.pose : trace_.guess) * moved;
   // Refined by PLICP against the map's lines.
   BuildReference(map);
-  const RegistrationResult r =
-      RegisterImproved(*s_.reference, cloud, start, nullptr, config_->closure_registration, s_.correspondences);
+  const PosePrior prior{start, config_->closure_prior_info, config_->closure_prior_info};
+  const RegistrationResult r = RegisterImproved(*s_.reference, cloud, start, config_->closure_prior_info > 0.0f ? &prior : nullptr,
+                                                config_->closure_registration, s_.correspondences);
   trace_.refinement = r.verdict;
   trace_.inlier_ratio = r.inlier_ratio;
   trace_.mean_residual_m = r.mean_residual_m;

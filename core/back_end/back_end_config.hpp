@@ -71,6 +71,13 @@ struct BackEndConfig {
   // re-enters, so the usual inlier ratio holds).
   PlicpConfig registration = MapRegistrationConfig();
   PlicpConfig closure_registration = ClosureRegistrationConfig();
+  // The closure's refinement keeps a prior at the search's pose of this strength (PosePrior units,
+  // xy and θ; 0 = none). In a corridor the map cannot fix the pose along it: without the prior the
+  // refinement was rejected as degenerate, or slid a door's spacing along it past its correction
+  // bound, and the corridor's block of the map stayed off (intel.clf at a 19.3 m range limit:
+  // 0.46 m). The edge's information is the points' Hessian alone, so that direction stays weak in
+  // the graph. Intel over ten range limits: mean 0.146 -> 0.071 m (docs/back-end.md).
+  float closure_prior_info = 10.0f;
   // The mean residual a closure may have when it moves the graph by more than the search's base
   // window (search_base_m, search_base_rad): a first registration's bound. (Apartment seed 16 with
   // calibrated odometry: a look-alike one doorway over, 0.98 m from the graph, fitted at 5.9 cm

@@ -207,6 +207,7 @@ std::vector<BadField> BadFields() {
       INT_FIELD(back_end.search_evaluations_per_step, kCount),
       INT_FIELD(back_end.match_grid_coarsen, (std::vector<double>{0.0, -1.0, 1.0, 1e9})),
       FLOAT_FIELD(back_end.large_closure_max_residual_m, kPositive),
+      FLOAT_FIELD(back_end.closure_prior_info, kNonNegative),
       FLOAT_FIELD(back_end.unfollowed_closure_min_score, kRatio),
       FLOAT_FIELD(back_end.search.min_angle_step_rad, kPositive),
       FLOAT_FIELD(back_end.search.max_angle_step_rad, kPositive),
