@@ -73,8 +73,8 @@ void EncodeLd06Packet(const Ld06Packet& packet, std::uint8_t out[kLd06PacketByte
 // LD06 range are given as 0 (no return).
 LidarPacket ToLidarPacket(const Ld06Packet& packet, std::int64_t stamp_us);
 
-// Maps the LD06's 16-bit millisecond timestamp (wrapping at 30000) to host microseconds:
-// the offset is fixed at the first packet, later packets are unwrapped against the last.
+// Maps the LD06's 16-bit millisecond timestamp (wrapping at 30000) to host microseconds: each
+// packet's stamp is unwrapped against the last, then mapped as below.
 class Ld06TimeBase {
  public:
   // The packet's millisecond stamp (15 bits, wrapping) in host time: unwrapped, then mapped by
