@@ -38,7 +38,7 @@ struct RoundTrip {
   double max_diff_rad = 0.0;
 };
 
-// Maps the replayed device files and compares each pose with the direct run's at the same scan.
+// Maps the replayed device files and compares each pose with the direct run's at its stamp.
 class ComparingSink : public dpcr::DeviceSink {
  public:
   ComparingSink(MapperType* device, const std::map<std::int64_t, dpcr::Pose2>* direct_poses, RoundTrip* result,
@@ -47,14 +47,20 @@ class ComparingSink : public dpcr::DeviceSink {
   void AddOdometry(const dpcr::OdometrySample& sample) override { device_->AddOdometry(sample); }
   void AddScan(const dpcr::DeviceScan& scan) override {
     (void)device_->AddScan(scan);
-    // Stamps are reproduced to a few microseconds (bunched arrivals: up to a burst late): the
-    // direct trajectory, interpolated between its scans, at the device scan's stamp.
-    auto after = direct_poses_->lower_bound(scan.stamp_us);
-    if (after == direct_poses_->end() || after == direct_poses_->begin()) return;
-    auto before = std::prev(after);
-    if (after->first - scan.stamp_us > tolerance_us_ && scan.stamp_us - before->first > tolerance_us_) return;
-    const float t = static_cast<float>(scan.stamp_us - before->first) / static_cast<float>(after->first - before->first);
-    const dpcr::Pose2 direct = dpcr::Interpolate(before->second, after->second, t);
+    // Stamps are reproduced to a few microseconds: the direct scan's pose within 1 ms. Bunched
+    // arrivals stamp a scan up to a burst late: the direct trajectory interpolated at its stamp.
+    dpcr::Pose2 direct;
+    auto near = direct_poses_->lower_bound(scan.stamp_us - 1000);
+    if (near != direct_poses_->end() && std::llabs(near->first - scan.stamp_us) <= 1000) {
+      direct = near->second;
+    } else {
+      auto after = direct_poses_->lower_bound(scan.stamp_us);
+      if (after == direct_poses_->end() || after == direct_poses_->begin()) return;
+      auto before = std::prev(after);
+      if (after->first - scan.stamp_us > tolerance_us_ && scan.stamp_us - before->first > tolerance_us_) return;
+      const float t = static_cast<float>(scan.stamp_us - before->first) / static_cast<float>(after->first - before->first);
+      direct = dpcr::Interpolate(before->second, after->second, t);
+    }
     // Each mapper's frame is its own first pose: compare motion since the first matched scan.
     if (r_->matched++ == 0) {
       first_direct_ = direct;
