@@ -92,6 +92,23 @@ Pose2 FrontEnd::ConstantVelocity(std::int64_t dt_us) const {
   return Pose2{last_motion_.x * f, last_motion_.y * f, last_motion_.theta * f};
 }
 
+void FrontEnd::FadeConstantVelocity() {
+  // In a rejection streak the constant velocity fades (halves each scan): a turn carried on at
+  // its last rate long after the robot stopped would spin the pose away (no wheels to say so).
+  // The translation is held for the streak's first seconds when it is the constant velocity's
+  // (no wheels measure it) and a heading sensor (a gyro, the wheels' heading) keeps the turn: a
+  // robot crossing a long room at a steady speed, whose far wall is out of the lidar's reach,
+  // keeps going while the scans slide along the room and are rejected; a faded guess stopped it
+  // within two scans, the rejected scans then fell ever further ahead of it, and the submap
+  // restarted there (XV-11 at 5 Hz without wheel translation: 0.4 m off in a room it then mapped
+  // twice; docs/front-end-accuracy.md). Without any sensor the
+  // heading is a guess too, and carrying the translation along it hurt (lidar alone: 0.061 m ->
+  // 0.195 m); with wheels their prediction is used, and holding the constant velocity's (the
+  // guess tried when the wheels are doubted) doubled mit-csail's central hall: both fade as before.
+  const float xy = HoldsVelocity() ? 1.0f : 0.5f;
+  last_motion_ = Pose2{xy * last_motion_.x, xy * last_motion_.y, 0.5f * last_motion_.theta};
+}
+
 Pose2 FrontEnd::Predict(std::int64_t stamp_us, std::int64_t dt_us) {
   const Pose2 constant_velocity = ConstantVelocity(dt_us);
   if (odometry_.empty()) {
@@ -173,9 +190,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   }
   wheel_check_.AddScan(pose(), last_odom_, stamp_us, registered && consecutive_rejections_ == 0);
   last_motion_ = Between(previous, pose_);
-  // In a rejection streak the constant velocity fades (halves each scan): a turn carried on at
-  // its last rate long after the robot stopped would spin the pose away (no wheels to say so).
-  if (consecutive_rejections_ > 0) last_motion_ = Pose2{0.5f * last_motion_.x, 0.5f * last_motion_.y, 0.5f * last_motion_.theta};
+  if (consecutive_rejections_ > 0) FadeConstantVelocity();
   last_motion_us_ = static_cast<std::int32_t>(since_last_us);
   if (FixedLag()) {
     FlushPendingScan(beams, stamp_us, previous, since_last_us, projected, keep_out, bent, first,
@@ -504,9 +519,9 @@ void FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, st
 
 bool FrontEnd::ImplausibleWithoutWheels(const Pose2& registered, const Pose2& predicted, const ScanMotion& motion,
                                          std::int64_t dt_us) const {
-  // Only a guess with no wheels behind it, and only while tracking: in a streak the constant
-  // velocity has faded and the registration must be free to catch up.
-  if (PriorXyScale(motion) >= 1.0f || consecutive_rejections_ > 0) return false;
+  // Only a guess with no wheels behind it, and only while tracking or the streak holds the
+  // velocity (FadeConstantVelocity): once it has faded the registration must be free to catch up.
+  if (PriorXyScale(motion) >= 1.0f || (consecutive_rejections_ > 0 && !HoldsVelocity())) return false;
   if (std::hypot(registered.x - predicted.x, registered.y - predicted.y) > kMaxLeapWithoutWheelsM) return true;
   // The speed only with a heading sensor: the lidar alone mis-turns now and then, and a speed cap
   // then kept out the registrations that found it again (seed 1: 0.218 -> 1.82 m).

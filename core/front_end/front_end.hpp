@@ -124,6 +124,11 @@ class FrontEnd {
   // and per second (the de-skew's, core/front_end/scan_motion.hpp).
   Pose2 ConstantVelocity(std::int64_t dt_us) const;
   Pose2 VelocityPerSecond() const;
+  // After a rejected scan: the last motion fades (see the definition for what is held).
+  void FadeConstantVelocity();
+  bool HoldsVelocity() const {
+    return HeadingMeasured() && !WheelsMeasured() && streak_us_ <= kHoldTranslationInStreakUs;
+  }
   DPCR_STAGE void RegisterScan(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, ProjectedScan* projected,
                                const Pose2& predicted);
   // Without wheels the de-skew assumed the last motion's velocity; a turn or a drive that started
@@ -299,6 +304,9 @@ class FrontEnd {
   Pose2 last_motion_;  // the last scan-to-scan motion, in the earlier scan's frame
   std::int32_t last_motion_us_ = 0;   // the time it took
   static constexpr float kMaxVelocityScale = 2.0f;
+  // How long a rejection streak keeps the constant velocity's translation (FadeConstantVelocity):
+  // a vacuum that stopped meanwhile is carried at most this far at its last speed.
+  static constexpr std::int64_t kHoldTranslationInStreakUs = 2'000'000;
   static constexpr std::uint32_t kMinScansBetweenEarlyBuilds = 2;
   std::uint32_t search_grid_version_ = 0;  // submap_line_builds when the search grid was built
   bool weak_match_ = false;  // the last first registration matched weakly (see FrontEndConfig)

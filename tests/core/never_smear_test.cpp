@@ -243,3 +243,53 @@ TEST_CASE("Without wheels a registration faster than a vacuum drives is rejected
   (void)m->AddScan(fast);
   CHECK(m->front_end_counters().first_rejected == 1);
 }
+
+namespace {
+
+// A robot driving straight at 0.25 m/s meets three scans it cannot register (junk) after 20
+// tracked ones; returns how far its pose moved over them. `gyro`: a gyro alone (the heading
+// known, no wheels); otherwise no odometry at all.
+float MoveOverThreeRejectedScans(bool gyro) {
+  dpcr::MapperConfig config;
+  config.localisation.relocalise = false;
+  auto m = std::make_unique<M>();
+  REQUIRE(m->Init(config) == dpcr::Status::kOk);
+  const dpcr::test::SyntheticRun<M> run(8.0f, 60, 450);  // 2.5 cm per scan along x
+  std::int64_t gyro_us = run.scans[0].stamp_us - 100000;
+  const auto gyro_until = [&](std::int64_t t_us) {
+    for (; gyro && gyro_us <= t_us; gyro_us += 10000) {
+      dpcr::OdometrySample s;
+      s.stamp_us = gyro_us;
+      s.has_wheels = false;
+      s.has_gyro = true;
+      m->AddOdometry(s);
+    }
+  };
+  for (int i = 0; i < 20; ++i) {
+    gyro_until(run.scans[static_cast<std::size_t>(i)].stamp_us);
+    (void)m->AddScan(run.scans[static_cast<std::size_t>(i)]);
+  }
+  REQUIRE(m->front_end_counters().first_rejected == 0);
+  const dpcr::Pose2 before = m->pose();
+  std::mt19937 rng(3);
+  for (int i = 20; i < 23; ++i) {
+    gyro_until(run.scans[static_cast<std::size_t>(i)].stamp_us);
+    (void)m->AddScan(Junk(run.scans[static_cast<std::size_t>(i)].stamp_us, &rng));
+  }
+  REQUIRE(m->front_end_counters().first_rejected == 3);
+  return std::hypot(m->pose().x - before.x, m->pose().y - before.y);
+}
+
+}  // namespace
+
+TEST_CASE("In a rejection streak a robot with a heading sensor keeps its speed and one without slows down") {
+  // FrontEnd::FadeConstantVelocity: the truth moves 7.5 cm over the three scans. With the gyro the
+  // translation is held (a robot crossing a room whose far wall is out of reach keeps going).
+  // Without any sensor it fades as before: the first rejected scan still moves by the last
+  // tracked step, the next two by half and a quarter of it (2.5 + 1.25 + 0.6 cm).
+  const float with_gyro = MoveOverThreeRejectedScans(true);
+  const float without = MoveOverThreeRejectedScans(false);
+  INFO("moved " << with_gyro << " m with a gyro, " << without << " m without odometry");
+  CHECK(std::fabs(with_gyro - 0.075f) < 0.01f);
+  CHECK(std::fabs(without - 0.044f) < 0.005f);
+}
