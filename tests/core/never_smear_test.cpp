@@ -57,6 +57,29 @@ struct Runner {
   }
 };
 
+// A gyro alone (no wheels), the robot not turning: a sample every 10 ms.
+struct StillGyro {
+  std::int64_t next_us = 0;
+  void Until(M* m, std::int64_t t_us) {
+    for (; next_us <= t_us; next_us += 10000) {
+      dpcr::OdometrySample s;
+      s.stamp_us = next_us;
+      s.has_wheels = false;
+      s.has_gyro = true;
+      m->AddOdometry(s);
+    }
+  }
+};
+
+// The run's first `count` scans, after the gyro's samples up to each (none without `gyro`).
+void TrackFirstScans(M* m, const dpcr::test::SyntheticRun<M>& run, int count, StillGyro* gyro) {
+  for (int i = 0; i < count; ++i) {
+    const M::ScanType& scan = run.scans[static_cast<std::size_t>(i)];
+    if (gyro != nullptr) gyro->Until(m, scan.stamp_us);
+    (void)m->AddScan(scan);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("A rejected scan under an uncertain prediction goes into no map, a streak is lost and counted") {
@@ -220,26 +243,14 @@ TEST_CASE("Without wheels a registration faster than a vacuum drives is rejected
   auto m = std::make_unique<M>();
   REQUIRE(m->Init(config) == dpcr::Status::kOk);
   const dpcr::test::SyntheticRun<M> run(8.0f, 60, 450);  // 2.5 cm per scan along x (0.25 m/s)
-  std::int64_t gyro_us = run.scans[0].stamp_us - 100000;
-  const auto gyro_until = [&](std::int64_t t_us) {  // a gyro alone, the robot not turning
-    for (; gyro_us <= t_us; gyro_us += 10000) {
-      dpcr::OdometrySample s;
-      s.stamp_us = gyro_us;
-      s.has_wheels = false;
-      s.has_gyro = true;
-      m->AddOdometry(s);
-    }
-  };
-  for (int i = 0; i < 20; ++i) {
-    gyro_until(run.scans[static_cast<std::size_t>(i)].stamp_us);
-    (void)m->AddScan(run.scans[static_cast<std::size_t>(i)]);
-  }
+  StillGyro gyro{run.scans[0].stamp_us - 100000};
+  TrackFirstScans(m.get(), run, 20, &gyro);
   REQUIRE(m->front_end_counters().first_rejected == 0);
   // The scan seen 3 scans further on, stamped as the next one: 0.075 m in 0.1 s, within the
   // leap allowed from the guess (0.05 m off it) but 0.75 m/s.
   M::ScanType fast = run.scans[22];
   fast.stamp_us = run.scans[20].stamp_us;
-  gyro_until(fast.stamp_us);
+  gyro.Until(m.get(), fast.stamp_us);
   (void)m->AddScan(fast);
   CHECK(m->front_end_counters().first_rejected == 1);
 }
@@ -247,33 +258,22 @@ TEST_CASE("Without wheels a registration faster than a vacuum drives is rejected
 namespace {
 
 // A robot driving straight at 0.25 m/s meets three scans it cannot register (junk) after 20
-// tracked ones; returns how far its pose moved over them. `gyro`: a gyro alone (the heading
+// tracked ones; returns how far its pose moved over them. `with_gyro`: a gyro alone (the heading
 // known, no wheels); otherwise no odometry at all.
-float MoveOverThreeRejectedScans(bool gyro) {
+float MoveOverThreeRejectedScans(bool with_gyro) {
   dpcr::MapperConfig config;
   config.localisation.relocalise = false;
   auto m = std::make_unique<M>();
   REQUIRE(m->Init(config) == dpcr::Status::kOk);
   const dpcr::test::SyntheticRun<M> run(8.0f, 60, 450);  // 2.5 cm per scan along x
-  std::int64_t gyro_us = run.scans[0].stamp_us - 100000;
-  const auto gyro_until = [&](std::int64_t t_us) {
-    for (; gyro && gyro_us <= t_us; gyro_us += 10000) {
-      dpcr::OdometrySample s;
-      s.stamp_us = gyro_us;
-      s.has_wheels = false;
-      s.has_gyro = true;
-      m->AddOdometry(s);
-    }
-  };
-  for (int i = 0; i < 20; ++i) {
-    gyro_until(run.scans[static_cast<std::size_t>(i)].stamp_us);
-    (void)m->AddScan(run.scans[static_cast<std::size_t>(i)]);
-  }
+  StillGyro still{run.scans[0].stamp_us - 100000};
+  StillGyro* gyro = with_gyro ? &still : nullptr;
+  TrackFirstScans(m.get(), run, 20, gyro);
   REQUIRE(m->front_end_counters().first_rejected == 0);
   const dpcr::Pose2 before = m->pose();
   std::mt19937 rng(3);
   for (int i = 20; i < 23; ++i) {
-    gyro_until(run.scans[static_cast<std::size_t>(i)].stamp_us);
+    if (gyro != nullptr) gyro->Until(m.get(), run.scans[static_cast<std::size_t>(i)].stamp_us);
     (void)m->AddScan(Junk(run.scans[static_cast<std::size_t>(i)].stamp_us, &rng));
   }
   REQUIRE(m->front_end_counters().first_rejected == 3);
