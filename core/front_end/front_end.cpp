@@ -101,10 +101,10 @@ void FrontEnd::FadeConstantVelocity() {
   // keeps going while the scans slide along the room and are rejected; a faded guess stopped it
   // within two scans, the rejected scans then fell ever further ahead of it, and the submap
   // restarted there (XV-11 at 5 Hz without wheel translation: 0.4 m off in a room it then mapped
-  // twice; docs/front-end-accuracy.md). Without any sensor the
-  // heading is a guess too, and carrying the translation along it hurt (lidar alone: 0.061 m ->
-  // 0.195 m); with wheels their prediction is used, and holding the constant velocity's (the
-  // guess tried when the wheels are doubted) doubled mit-csail's central hall: both fade as before.
+  // twice; docs/front-end-accuracy.md). Without any sensor the heading is a guess too, and
+  // carrying the translation along it hurt (lidar alone: 0.061 m -> 0.195 m); with wheels their
+  // prediction is used, and holding the constant velocity's (the guess tried when the wheels are
+  // doubted) doubled mit-csail's central hall: both fade as before.
   const float xy = HoldsVelocity() ? 1.0f : 0.5f;
   last_motion_ = Pose2{xy * last_motion_.x, xy * last_motion_.y, 0.5f * last_motion_.theta};
 }
