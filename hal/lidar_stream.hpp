@@ -3,8 +3,9 @@
 // Timing: kArrival takes the host arrival time of the bytes that complete a packet as the
 // time of its last point (exact for emitted device files, within UART latency on a robot);
 // kDeviceClock (LD06 only) uses the sensor's millisecond timestamp, mapped to host time by its
-// least-delayed packets (Ld06TimeBase, hal/device_time_base.hpp): bytes handed over in bursts (a
-// USB-serial adapter's latency timer) or a late reader do not move the stamps (docs/board.md).
+// least-delayed packets (Ld06TimeBase in hal/ld06_decoder.hpp, over DeviceTimeBase): bytes
+// handed over in bursts (a USB-serial adapter's latency timer) or a late reader do not move the
+// stamps (docs/board.md).
 #pragma once
 
 #include <cstddef>
