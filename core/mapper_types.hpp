@@ -42,6 +42,8 @@ struct MapperCounters {
   // Scans mapped into the anchor map (the one the robot's pose is known in) while it could not
   // yet place itself in the map of the region it re-entered after a loop.
   std::uint32_t scans_into_anchor_map = 0;
+  // Of scans_not_inserted: those taken while turning fast (LidarConfig::map_max_turn_rate_rad_s).
+  std::uint32_t scans_turning_not_mapped = 0;
   std::uint32_t submap_restarts = 0;         // after a long rejection streak (FrontEndConfig)
   // Rejection streaks (consecutive rejected first registrations): the scans in them, the time
   // they covered (each scan counts the time since the previous scan), the longest one.

@@ -106,7 +106,7 @@ void ForEachField(M& m, dpcr::MapperConfig& c) {
   m(g.unsettle_occupied_after), m(g.unsettle_free_after), m(g.drop_hits_behind_settled_cells), m(g.unsettle_miss_margin_m);
   dpcr::LidarConfig& l = c.lidar;
   m(l.min_range_m), m(l.max_range_m), m(l.no_return_free_m), m(l.mount), m(l.drop_isolated_returns), m(l.range_noise_m),
-      m(l.near_weight_range_m);
+      m(l.near_weight_range_m), m(l.map_max_turn_rate_rad_s);
   dpcr::FrontEndConfig& f = c.front_end;
   m(f.submap_scans), m(f.submap_line_period), m(f.region_line_period), m(f.second_registration_period),
       m(f.submap_miss_range_m), m(f.region_miss_range_m), m(f.submap_refit_gate_m), m(f.submap_refit_min_points),

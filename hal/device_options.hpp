@@ -28,12 +28,15 @@ struct DeviceOptions {
 // XV-11's junk readings are dropped (LidarConfig::drop_isolated_returns), and each model's range
 // noise at 3 m (LidarConfig::range_noise_m) is the simulator's model of it: an LD06 1 cm + 0.5 %
 // of the range, an XV-11 1 cm + 1 % (host_sim/sim/sensors.hpp); both sit at a vacuum's ankle
-// height, where near returns weigh less (LidarConfig::near_weight_range_m).
+// height, where near returns weigh less (LidarConfig::near_weight_range_m). An LD06's scans taken
+// in a fast turn stay out of the regional maps (LidarConfig::map_max_turn_rate_rad_s; an XV-11's
+// do not: measured, both in core/config.hpp).
 inline void ApplyLidarModel(LidarKind kind, LidarConfig* lidar) {
   const bool xv11 = kind == LidarKind::kXv11;
   lidar->drop_isolated_returns = xv11;
   lidar->range_noise_m = xv11 ? 0.04f : 0.025f;
   lidar->near_weight_range_m = kVacuumNearWeightRangeM;
+  lidar->map_max_turn_rate_rad_s = xv11 ? 0.0f : kLd06MapMaxTurnRateRadS;
 }
 
 }  // namespace dpcr

@@ -209,7 +209,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   // 3. Regions, and the second registration.
   TrackRegions();
   // 4b. Once into a regional map (InsertIntoMaps).
-  if (!InsertIntoMaps(projected, pose(), keep_out)) {
+  if (!InsertIntoMaps(projected, pose(), keep_out, TurningFast())) {
     // Its pose is still known in the anchor region's frame.
     last_scan_region_ = anchor_region_ >= 0 ? anchor_region_ : regions_.current();
     if (last_scan_region_ >= 0) last_scan_in_region_ = Between(regions_[last_scan_region_].anchor, pose());
@@ -292,7 +292,7 @@ void FrontEnd::FlushPendingScan(Span<const Beam> beams, std::int64_t stamp_us, c
     into_maps = !pending_.kept_out || straight;
   }
   TrackRegions();
-  if (flushed) (void)InsertIntoMaps(projected, submap_pose_ * at, !into_maps);
+  if (flushed) (void)InsertIntoMaps(projected, submap_pose_ * at, !into_maps, pending_.turning);
   // The current scan's pose is known in its map's frame now; the scan itself waits.
   last_scan_region_ = (keep_out || lost_in_region_) && anchor_region_ >= 0 ? anchor_region_ : regions_.current();
   if (last_scan_region_ >= 0) last_scan_in_region_ = Between(regions_[last_scan_region_].anchor, pose());
@@ -303,6 +303,7 @@ void FrontEnd::FlushPendingScan(Span<const Beam> beams, std::int64_t stamp_us, c
   pending_.kept_out = keep_out;
   pending_.bent = bent;
   pending_.rejected = consecutive_rejections_ > 0;
+  pending_.turning = TurningFast();
   pending_.beams = static_cast<std::uint16_t>(n);
   pending_.stamp_us = stamp_us;
   pending_.since_before_us = first ? 0 : since_last_us;
@@ -722,9 +723,16 @@ RegistrationResult FrontEnd::RegisterSubmap(RegionalMap& r) {
   return res;
 }
 
-bool FrontEnd::InsertIntoMaps(const ProjectedScan& projected, const Pose2& world, bool keep_out) {
-  if (keep_out || config_.localisation.localise_only) {
+bool FrontEnd::TurningFast() const {
+  const float max_rate = config_.lidar.map_max_turn_rate_rad_s;
+  if (max_rate <= 0.0f || last_motion_us_ <= 0) return false;
+  return std::fabs(last_motion_.theta) * 1e6f > max_rate * static_cast<float>(last_motion_us_);
+}
+
+bool FrontEnd::InsertIntoMaps(const ProjectedScan& projected, const Pose2& world, bool keep_out, bool turning) {
+  if (keep_out || turning || config_.localisation.localise_only) {
     ++counters_.scans_not_inserted;
+    if (turning && !keep_out && !config_.localisation.localise_only) ++counters_.scans_turning_not_mapped;
     return false;
   }
   if (lost_in_region_ && anchor_region_ >= 0) {

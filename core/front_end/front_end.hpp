@@ -184,8 +184,11 @@ class FrontEnd {
   // `world`: the scan's pose (the robot's, or the fixed-lag de-skew's waiting scan's).
   void InsertIntoRegion(const ProjectedScan& projected, int index, const Pose2& world);
   // Once into the current regional map, or the anchor map while the robot cannot place itself in
-  // the current one; not a scan kept out, nor in localise-only mode (false, counted).
-  bool InsertIntoMaps(const ProjectedScan& projected, const Pose2& world, bool keep_out);
+  // the current one; not a scan kept out, nor one taken turning fast, nor in localise-only mode
+  // (false, counted).
+  bool InsertIntoMaps(const ProjectedScan& projected, const Pose2& world, bool keep_out, bool turning);
+  // The last scan-to-scan motion turned faster than LidarConfig::map_max_turn_rate_rad_s.
+  bool TurningFast() const;
   // An empty scan, or a sparse one while the submap is empty (FrontEndConfig::min_start_hits):
   // the pose is the prediction and the scan goes nowhere (counted). True when skipped.
   bool SkipScan(const ProjectedScan& projected, const Pose2& predicted);
@@ -360,6 +363,7 @@ class FrontEnd {
     bool kept_out = false;  // out of the maps (its registration was rejected, or bent)
     bool bent = false;      // kept out as bent (KeepOutBent)
     bool rejected = false;  // its first registration was rejected
+    bool turning = false;   // taken turning fast (TurningFast): out of the regional maps
     std::uint16_t beams = 0;
     std::int64_t stamp_us = 0;
     std::int64_t since_before_us = 0;  // since the scan before it (0: none)

@@ -290,7 +290,9 @@ int ReplayDevice(const Options& opt) {
                        {"track_width_m", device.wheels.track_width_m}, {"ticks_per_rev", device.wheels.ticks_per_rev},
                        {"max_range_m", device.max_range_m}, {"laser_offset_m", device.laser_offset_m},
                        {"lidar_range_noise_m", config.lidar.range_noise_m},
-                       {"lidar_near_weight_range_m", config.lidar.near_weight_range_m}, {"heading", opt.heading}};
+                       {"lidar_near_weight_range_m", config.lidar.near_weight_range_m},
+                       {"lidar_map_max_turn_rate_dps", config.lidar.map_max_turn_rate_rad_s * 180.0 / M_PI},
+                       {"heading", opt.heading}};
   metrics["input"] = {{"uart", opt.uart}, {"candump", opt.candump}, {"lidar", lidar_name},
                       {"packets", c.lidar.packets}, {"bad_packets", c.lidar.bad_packets}, {"resyncs", c.lidar.resyncs},
                       {"discarded_bytes", c.lidar.discarded_bytes}, {"revolutions", c.lidar.revolutions},

@@ -16,6 +16,7 @@
 #include "host_sim/apps/map_truth_check.hpp"
 #include "host_sim/apps/progress.hpp"
 #include "host_sim/apps/scan_times.hpp"
+#include "hal/device_options.hpp"
 #include "host_sim/drivers/device_files.hpp"
 #include "host_sim/output/map_file_io.hpp"
 #include "host_sim/output/run_report.hpp"
@@ -38,6 +39,7 @@ struct Options {
   double start_heading_rad = std::numeric_limits<double>::quiet_NaN();
   double grid_turn_deg = -1.0;  // < 0: the configuration's
   double near_weight_m = -1.0;  // < 0: a vacuum lidar's (kVacuumNearWeightRangeM)
+  double map_max_turn_dps = -1.0;  // < 0: the lidar model's (ApplyLidarModel)
   std::string load_map;
   std::string save_map;
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
@@ -177,8 +179,13 @@ dpcr::sim::SimConfig SimulationConfig(const Options& opt) {
 dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfig& sim_config) {
   dpcr::MapperConfig config;
   config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
-  config.lidar.drop_isolated_returns = opt.lidar == "xv11";  // its junk readings
+  // As the device path tells the mapper of the model (junk filter, turning scans), with the
+  // simulated range noise.
+  const float range_noise_m = config.lidar.range_noise_m;
+  dpcr::ApplyLidarModel(opt.lidar == "xv11" ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06, &config.lidar);
+  config.lidar.range_noise_m = range_noise_m;
   if (opt.near_weight_m >= 0.0) config.lidar.near_weight_range_m = static_cast<float>(opt.near_weight_m);
+  if (opt.map_max_turn_dps >= 0.0) config.lidar.map_max_turn_rate_rad_s = static_cast<float>(opt.map_max_turn_dps * M_PI / 180.0);
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
   config.front_end.gyro_heading = opt.heading == "gyro";
@@ -302,6 +309,7 @@ int Run(const Options& opt) {
   metrics["input"] = InputMetrics(opt, sim, sim_config);
   metrics["input"]["unsettle_after"] = {config.grid.unsettle_occupied_after, config.grid.unsettle_free_after};
   metrics["input"]["near_weight_range_m"] = config.lidar.near_weight_range_m;
+  metrics["input"]["map_max_turn_rate_dps"] = config.lidar.map_max_turn_rate_rad_s * 180.0 / M_PI;
   AddRelocalisationFigures(opt, mapper, sim, run, recoveries, lost, align, &metrics);
   if (opt.spins > 0) metrics["spins"] = spins.Metrics();
   const dpcr::output::FusedMap fused = dpcr::output::RenderFused(mapper);
@@ -387,6 +395,9 @@ void AddSensorOptions(CLI::App& app, Options& opt) {
                  "(degrees; FrontEndConfig::grid_turn_rad, default 15; 0: never)")->check(CLI::Range(0.0, 40.0));
   app.add_option("--near-weight", opt.near_weight_m, "returns within this distance of the robot weigh distance / this in the "
                  "first registration (metres; LidarConfig::near_weight_range_m, default 0.5; 0: all alike)")->check(CLI::Range(0.0, 10.0));
+  app.add_option("--map-max-turn", opt.map_max_turn_dps, "scans taken turning faster than this go into the submap but not the "
+                 "regional maps (deg/s; LidarConfig::map_max_turn_rate_rad_s, default: ld06 60, xv11 0; 0: every scan)")
+      ->check(CLI::Range(0.0, 5000.0));
   app.add_flag("--ideal-wheels", opt.ideal_wheels, "wheel odometry without calibration error or slips (ticks still quantise)");
 }
 

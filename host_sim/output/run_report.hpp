@@ -154,6 +154,7 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                    {"updates_dropped_pool_full", c.updates_dropped_pool_full},
                    {"scans_not_inserted", c.scans_not_inserted},
                    {"scans_into_anchor_map", c.scans_into_anchor_map},
+                   {"scans_turning_not_mapped", c.scans_turning_not_mapped},
                    {"scans_empty", c.scans_empty},
                    {"scans_too_sparse", c.scans_too_sparse},
                    {"beams_isolated", c.beams_isolated},

@@ -133,6 +133,7 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(lidar.no_return_free_m, kNonNegative),
       FLOAT_FIELD(lidar.range_noise_m, kNonNegative),
       FLOAT_FIELD(lidar.near_weight_range_m, kNonNegative),
+      FLOAT_FIELD(lidar.map_max_turn_rate_rad_s, kNonNegative),
       FLOAT_FIELD(lidar.mount.x, kOffset),
       FLOAT_FIELD(lidar.mount.y, kOffset),
       FLOAT_FIELD(lidar.mount.theta, kOffset),
