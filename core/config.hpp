@@ -96,11 +96,12 @@ struct LidarConfig {
   // A scan taken while the robot turns faster than this (its registered scan-to-scan turn over
   // the time between the scans) is tracked and goes into the submap, but not into the regional
   // maps (MapperCounters::scans_turning_not_mapped); 0 = every scan is mapped. A vacuum turning
-  // at a lane's end sweeps 9 degrees during one LD06 revolution, and those scans, mapped, bend
-  // the long-lived maps: kept out (60 deg/s), apartment seeds 1-30 LocErr_ave 0.0210 -> 0.0194 m,
-  // doors 0.0263 -> 0.0218, device path 0.0276 -> 0.0250 (docs/back-end.md, "Scans taken in a
-  // turn"). The XV-11 (5 Hz, ~250 returns a revolution) keeps 0: its maps lost more than they
-  // gained (XV-11 + gyro 0.0330 -> 0.0364, wheels alone 0.060 -> 0.104); public logs keep 0.
+  // at a lane's end sweeps 9 degrees during one LD06 revolution; with those scans kept out of the
+  // long-lived maps (60 deg/s) their anchors come out closer to the truth: apartment seeds 1-30
+  // LocErr_ave 0.0210 -> 0.0194 m, doors 0.0263 -> 0.0218, device path 0.0276 -> 0.0250
+  // (docs/back-end.md, "Scans taken in a turn"). The XV-11 (5 Hz, ~250 returns a revolution)
+  // keeps 0: its maps lost more than they gained (XV-11 + gyro 0.0330 -> 0.0364, wheels alone
+  // 0.060 -> 0.104); the public logs keep 0.
   float map_max_turn_rate_rad_s = 0.0f;
 };
 

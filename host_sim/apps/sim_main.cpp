@@ -11,12 +11,12 @@
 #include <vector>
 
 #include "core/mapper.hpp"
+#include "hal/device_options.hpp"
 #include "host_sim/apps/config_error.hpp"
 #include "host_sim/apps/kidnap_report.hpp"
 #include "host_sim/apps/map_truth_check.hpp"
 #include "host_sim/apps/progress.hpp"
 #include "host_sim/apps/scan_times.hpp"
-#include "hal/device_options.hpp"
 #include "host_sim/drivers/device_files.hpp"
 #include "host_sim/output/map_file_io.hpp"
 #include "host_sim/output/run_report.hpp"
