@@ -79,17 +79,8 @@ SpinResult Spin(bool gyro, float (*heading)(float) = Heading, float at_rest_from
       o.gyro_yaw_rate = odom == 0 ? 0.0f : (heading(t) - heading(t - 0.01f)) / 0.01f;
       m->AddOdometry(o);
     }
-    M::ScanType scan;
-    scan.stamp_us = static_cast<std::int64_t>(std::lround(t_scan * 1e6f));
-    for (int b = 0; b < 360; ++b) {
-      const float offset = kRevolutionS * static_cast<float>(b) / 360.0f;
-      dpcr::Beam beam;
-      beam.angle_rad = dpcr::NormalizeAngle(2.0f * dpcr::kPi * static_cast<float>(b) / 360.0f);
-      beam.offset_us = static_cast<std::int32_t>(std::lround(offset * 1e6f));
-      beam.range_m = dpcr::test::CabinetRoomRange(x, y, heading(t_scan + offset) + beam.angle_rad);
-      if (noisy) beam.range_m = Degrade(beam.range_m, &rng);
-      (void)scan.beams.push_back(beam);
-    }
+    M::ScanType scan = dpcr::test::CabinetRoomRevolution<M::ScanType>(x, y, t_scan, kRevolutionS, 360, heading);
+    for (std::size_t b = 0; noisy && b < scan.beams.size(); ++b) scan.beams[b].range_m = Degrade(scan.beams[b].range_m, &rng);
     (void)m->AddScan(scan);
     result.heading_error = std::fabs(dpcr::NormalizeAngle(m->pose().theta - heading(t_scan)));
     if (t_scan >= at_rest_from_s) result.worst_at_rest = std::fmax(result.worst_at_rest, result.heading_error);

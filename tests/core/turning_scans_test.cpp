@@ -49,17 +49,7 @@ TurnResult Turn(float max_turn_deg_per_s, bool wheels) {
       o.pose = dpcr::Pose2{0.0f, 0.0f, Heading(t)};
       m->AddOdometry(o);
     }
-    M::ScanType scan;
-    scan.stamp_us = static_cast<std::int64_t>(std::lround(t_scan * 1e6f));
-    for (int b = 0; b < 450; ++b) {
-      const float offset = kRevolutionS * static_cast<float>(b) / 450.0f;
-      dpcr::Beam beam;
-      beam.angle_rad = dpcr::NormalizeAngle(2.0f * dpcr::kPi * static_cast<float>(b) / 450.0f);
-      beam.offset_us = static_cast<std::int32_t>(std::lround(offset * 1e6f));
-      beam.range_m = dpcr::test::CabinetRoomRange(x, y, Heading(t_scan + offset) + beam.angle_rad);
-      (void)scan.beams.push_back(beam);
-    }
-    (void)m->AddScan(scan);
+    (void)m->AddScan(dpcr::test::CabinetRoomRevolution<M::ScanType>(x, y, t_scan, kRevolutionS, 450, Heading));
     const float error = std::fabs(dpcr::NormalizeAngle(m->pose().theta - Heading(t_scan)));
     result.worst_heading_error = std::fmax(result.worst_heading_error, error);
     result.final_heading_error = error;
