@@ -109,7 +109,7 @@ struct LidarConfig {
 constexpr float kVacuumNearWeightRangeM = 0.5f;
 // LidarConfig::map_max_turn_rate_rad_s of an LD06 on a vacuum: 60 deg/s (45 and 30 measured alike
 // on the apartment, 90 keeps every scan of the simulator's 86 deg/s turns).
-constexpr float kLd06MapMaxTurnRateRadS = 60.0f * 3.14159265f / 180.0f;
+constexpr float kLd06MapMaxTurnRateRadS = 60.0f * kPi / 180.0f;
 
 constexpr ReferenceConfig ReferenceWithThreshold(std::int16_t obstacle_threshold) {
   ReferenceConfig c;
