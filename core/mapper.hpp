@@ -71,7 +71,8 @@ class Mapper {
     last_increment_pose_ = s.pose;
     front_end_.AddOdometry(s);
   }
-  // kOk when the scan was used; kNotEnoughData when it had no usable beam (counted, pose predicted).
+  // kOk when the scan was used; kNotEnoughData when it had no usable beam (counted, pose predicted);
+  // kInvalidArgument for a stamp before 1970 or past 2^56 us (counted, nothing changed).
   Status AddScan(const ScanType& scan) { return front_end_.AddScan(scan.beams.span(), scan.stamp_us); }
 
   Pose2 pose() const { return front_end_.pose(); }

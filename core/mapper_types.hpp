@@ -30,7 +30,7 @@ struct MapperCounters {
   std::uint32_t scans_without_odometry = 0;  // no odometry sample yet: constant-velocity prediction
   std::uint32_t odometry_samples = 0;
   std::uint32_t odometry_steps_back = 0;     // samples stamped earlier than their predecessor
-  std::uint32_t odometry_rejected = 0;       // not finite or past any floor: dropped (FrontEnd::AddOdometry)
+  std::uint32_t odometry_rejected = 0;       // not finite, past any floor or gyro, a bad stamp: dropped (FrontEnd::AddOdometry)
   std::uint32_t beams_invalid = 0;           // no return, or outside [min, max] range
   std::uint32_t beams_isolated = 0;          // returns dropped as junk (LidarConfig::drop_isolated_returns)
   std::uint32_t regions_created = 0;
@@ -66,6 +66,11 @@ struct MapperCounters {
   // registered, window after window (FrontEnd's WheelCheck: ticks made of an IMU's yaw, a dead
   // encoder); the front end then predicted like a robot without wheels.
   std::uint32_t odometry_without_wheel_translation = 0;
+  // Scans stamped before 1970 or past 2^56 us: refused (Status::kInvalidArgument), nothing changed.
+  std::uint32_t scans_bad_stamp = 0;
+  // Scans stamped more than 10 minutes after or before the previous one (a clock jump, a sleep):
+  // used, with no time measured across the jump (FrontEnd::AddScan).
+  std::uint32_t scan_stamp_jumps = 0;
 };
 
 }  // namespace dpcr

@@ -1,12 +1,10 @@
 // MapperConfig (core/config.hpp) with fuzzed fields -> Validate against the tiny profile's
 // storage. Validate must refuse whatever would crash the mapper: a configuration it accepts is
 // Init'ed and maps a short synthetic run (tiny profile) without a crash, an assert or a sanitizer
-// report. The input edits a few fields each (0, negated, NaN, infinities, huge, tiny, scaled,
-// nudged, any value; bools flipped).
+// report. The input edits a few fields each (fuzz/value_mutator.hpp).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <variant>
 #include <vector>
 
@@ -16,49 +14,9 @@
 #include "core/mapper.hpp"
 #include "fuzz/fuzz_check.hpp"
 #include "fuzz/tiny_map_run.hpp"
+#include "fuzz/value_mutator.hpp"
 
 namespace {
-
-// Sets one field to a bad or random value, by kind: `choice` picks which.
-class Mutator {
- public:
-  explicit Mutator(FuzzedDataProvider& in) : in_(in) {}
-
-  void operator()(float& v, std::uint8_t choice) {
-    switch (choice % 8) {
-      case 0: v = 0.0f; break;
-      case 1: v = -v; break;
-      case 2: v = std::numeric_limits<float>::quiet_NaN(); break;
-      case 3: v = (choice & 8) != 0 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity(); break;
-      case 4: v = (choice & 8) != 0 ? 1e30f : 1e-30f; break;
-      case 5: v *= in_.ConsumeFloatingPointInRange<float>(0.0f, 4.0f); break;
-      case 6: v += in_.ConsumeFloatingPointInRange<float>(-1.0f, 1.0f); break;
-      default: v = in_.ConsumeFloatingPoint<float>(); break;
-    }
-  }
-  template <class Int>
-  void Integer(Int& v, std::uint8_t choice) {
-    switch (choice % 8) {
-      case 0: v = 0; break;
-      case 1: v = static_cast<Int>(-v); break;
-      case 2: v = (choice & 8) != 0 ? std::numeric_limits<Int>::min() : std::numeric_limits<Int>::max(); break;
-      case 3: v = static_cast<Int>(v * 2); break;
-      case 4: v = static_cast<Int>(v / 2); break;
-      case 5: v = static_cast<Int>(v + in_.ConsumeIntegralInRange<int>(-3, 3)); break;
-      case 6: v = in_.ConsumeIntegralInRange<Int>(-2, 1000); break;
-      default: v = in_.ConsumeIntegral<Int>(); break;
-    }
-  }
-  void operator()(int& v, std::uint8_t choice) { Integer(v, choice); }
-  void operator()(std::int16_t& v, std::uint8_t choice) { Integer(v, choice); }
-  void operator()(std::uint8_t& v, std::uint8_t choice) {  // counts: 0 (off), the largest, any
-    v = choice % 3 == 0 ? 0 : choice % 3 == 1 ? std::numeric_limits<std::uint8_t>::max() : in_.ConsumeIntegral<std::uint8_t>();
-  }
-  void operator()(bool& v, std::uint8_t) { v = !v; }
-
- private:
-  FuzzedDataProvider& in_;
-};
 
 // Every field of the configuration, by address, in a fixed order.
 class FieldList {
@@ -157,7 +115,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   dpcr::MapperConfig config = run.config;
   FieldList list;
   ForEachField(list, config);
-  Mutator mutator(in);
+  dpcr::fuzz::ValueMutator mutator(in);
   while (in.remaining_bytes() >= 2) {
     const std::size_t index = in.ConsumeIntegral<std::uint8_t>();
     const std::uint8_t choice = in.ConsumeIntegral<std::uint8_t>();

@@ -1,6 +1,7 @@
 // Writes the generated seed inputs into DIR/<target>/: device bytes made by the encoders (the
-// LD06 datasheet packet among them), a wheel-frame sequence and a tiny-profile map saved after a
-// short synthetic run. The text formats' seeds are checked in (fuzz/seeds/).
+// LD06 datasheet packet among them), a wheel-frame sequence, a tiny-profile map saved after a
+// short synthetic run and the mapper targets' edit lists. The text formats' seeds are checked in
+// (fuzz/seeds/).
 // Usage: dpcr-fuzz-seeds DIR
 #include <cstdint>
 #include <cstdio>
@@ -153,6 +154,12 @@ int main(int argc, char** argv) {
   Write(dir, "fuzz_map_file", "tiny_map_resealed", resealed);
   Write(dir, "fuzz_mapper_config", "defaults", Bytes{});
   Write(dir, "fuzz_mapper_config", "heading_jump", Bytes{0xB0});
+  // 16 scans with each kind of odometry, and a few edits of beams and stamps.
+  Write(dir, "fuzz_mapper_scans", "wheels", Bytes{0x0F});
+  Write(dir, "fuzz_mapper_scans", "wheels_and_gyro", Bytes{0x1F});
+  Write(dir, "fuzz_mapper_scans", "gyro_only", Bytes{0x2F});
+  Write(dir, "fuzz_mapper_scans", "lidar_only", Bytes{0x3F});
+  Write(dir, "fuzz_mapper_scans", "edited", Bytes{0x0F, 0x87, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x02, 0x44, 0x00});
   std::printf("seeds written to %s (map file %zu bytes)\n", dir.string().c_str(), map.size());
   return 0;
 }

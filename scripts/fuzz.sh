@@ -8,6 +8,8 @@
 # Prints one line per target: runs, executions per second, corpus size, result.
 # DPCR_FUZZ_SEED=N fixes libFuzzer's random seed (.ci/run sets it, so that CI explores the same
 # way each time and does not fail at random on a new finding; unset or 0: a random seed).
+# DPCR_FUZZ_RUNS=N runs each target for N executions instead of a time (the seconds are then
+# ignored): DPCR_FUZZ_RUNS=10000000 bash scripts/fuzz.sh 0 fuzz_ld06 is a 10^7-execution campaign.
 # Usage: bash scripts/fuzz.sh [seconds-per-target] [target...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -36,7 +38,7 @@ run_target() {
   for d in "$build/seeds/$t" "fuzz/seeds/$t"; do [ -d "$d" ] && dirs+=("$d"); done
   local log="$build/logs/$t.log" start status=0 result
   start=$(date +%s)
-  "$build/fuzz/$t" -max_total_time="$seconds" -seed="${DPCR_FUZZ_SEED:-0}" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+  "$build/fuzz/$t" "${budget[@]}" -seed="${DPCR_FUZZ_SEED:-0}" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$build/artifacts/$t/" "${dirs[@]}" >"$log" 2>&1 || status=$?
   local elapsed=$(( $(date +%s) - start ))
   local runs speed corpus
@@ -53,6 +55,10 @@ run_target() {
     "$result" > "$build/logs/$t.summary"
   return $status
 }
+
+# Each target's budget: a time, or a number of executions.
+runs=${DPCR_FUZZ_RUNS:-0}
+if [ "$runs" -gt 0 ]; then budget=(-runs="$runs"); label="$runs executions"; else budget=(-max_total_time="$seconds"); label="${seconds}s"; fi
 
 # As many targets at a time as there are cores (DPCR_FUZZ_JOBS overrides): each is one process.
 jobs=${DPCR_FUZZ_JOBS:-$(nproc)}
@@ -71,7 +77,7 @@ for t in "${targets[@]}"; do
   case "${summary[-1]}" in *"  ok") ;; *) failed+=("$t") ;; esac
 done
 
-echo "== fuzz: ${seconds}s per target"
+echo "== fuzz: ${label} per target"
 printf '%s\n' "${summary[@]}"
 if [ ${#failed[@]} -gt 0 ]; then
   echo "fuzz: ${#failed[@]} target(s) failed: ${failed[*]}" >&2

@@ -14,10 +14,25 @@ namespace {
 // any floor a vacuum or a research robot drives, and short of where float positions fail.
 constexpr float kMaxOdometryCoordinateM = 100000.0f;
 
+// Stamps are microseconds of a clock that started at or after 1970 (a boot clock, Unix time) and
+// reads less than 2^56 us (2283 years): the difference of any two never overflows.
+constexpr std::int64_t kMaxStampUs = std::int64_t{1} << 56;
+// A scan this long after the one before it (or this far before it) follows a clock jump, or a
+// sleep of the robot: nothing measured per second (the constant velocity, a turn rate, a
+// rejection streak's time) is carried across it. Longer than any lidar dropout a run survives.
+constexpr std::int64_t kMaxScanGapUs = 600 * 1000000LL;
+
+// A yaw rate past any gyro's range (vacuums' saturate at 35 rad/s): a rate of 1e30 integrated to
+// an infinite heading once.
+constexpr float kMaxGyroRateRadS = 100.0f;
+
+bool PlausibleStamp(std::int64_t stamp_us) { return stamp_us >= 0 && stamp_us <= kMaxStampUs; }
+
 bool PlausibleOdometry(const OdometrySample& s) {
   // Written so that NaN fails every test.
   const bool position = std::fabs(s.pose.x) <= kMaxOdometryCoordinateM && std::fabs(s.pose.y) <= kMaxOdometryCoordinateM;
-  return position && std::isfinite(s.pose.theta) && (!s.has_gyro || std::isfinite(s.gyro_yaw_rate));
+  return position && std::isfinite(s.pose.theta) && (!s.has_gyro || std::fabs(s.gyro_yaw_rate) <= kMaxGyroRateRadS) &&
+         PlausibleStamp(s.stamp_us);
 }
 
 }  // namespace
@@ -146,13 +161,26 @@ Pose2 FrontEnd::VelocityPerSecond() const {
   return Pose2{last_motion_.x * f, last_motion_.y * f, last_motion_.theta * f};
 }
 
+std::int64_t FrontEnd::ScanInterval(std::int64_t stamp_us) {
+  std::int64_t since_last_us = last_stamp_us_ >= 0 ? stamp_us - last_stamp_us_ : 0;
+  if (since_last_us > kMaxScanGapUs || since_last_us < -kMaxScanGapUs) {
+    ++counters_.scan_stamp_jumps;
+    since_last_us = 0;
+  }
+  last_stamp_us_ = stamp_us;
+  return since_last_us;
+}
+
 Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   ++counters_.scans;
+  if (!PlausibleStamp(stamp_us)) {
+    ++counters_.scans_bad_stamp;  // nothing else changes: the next scan is measured from the last good one
+    return Status::kInvalidArgument;
+  }
   (void)scan_marker_.Next();
   // 1. Prediction and de-skew.
   Pose2 previous = pose_;
-  const std::int64_t since_last_us = last_stamp_us_ >= 0 ? stamp_us - last_stamp_us_ : 0;
-  last_stamp_us_ = stamp_us;
+  const std::int64_t since_last_us = ScanInterval(stamp_us);
   Pose2 predicted = Predict(stamp_us, since_last_us);
   const ScanMotion motion(odometry_, config_.front_end.gyro_heading, VelocityPerSecond(), stamp_us);
   ProjectedScan projected = ProjectScan(beams, config_.lidar, motion, s_.hits, s_.free_ends);
@@ -296,8 +324,11 @@ void FrontEnd::FlushPendingScan(Span<const Beam> beams, std::int64_t stamp_us, c
   // The current scan's pose is known in its map's frame now; the scan itself waits.
   last_scan_region_ = (keep_out || lost_in_region_) && anchor_region_ >= 0 ? anchor_region_ : regions_.current();
   if (last_scan_region_ >= 0) last_scan_in_region_ = Between(regions_[last_scan_region_].anchor, pose());
-  const std::size_t n = beams.size() < s_.pending_beams.size() ? beams.size() : s_.pending_beams.size();
-  for (std::size_t i = 0; i < n; ++i) s_.pending_beams[i] = PackedBeam::Pack(beams[i]);
+  // Only beams that can be packed faithfully wait (an implausible one would come back plausible).
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < beams.size() && n < s_.pending_beams.size(); ++i) {
+    if (PlausibleBeam(beams[i])) s_.pending_beams[n++] = PackedBeam::Pack(beams[i]);
+  }
   pending_.active = true;
   pending_.first = first;
   pending_.kept_out = keep_out;

@@ -119,6 +119,8 @@ class FrontEnd {
   // second registration = RegisterSubmap; insertion = Submap::Add + RegionSet::InsertScan +
   // RegionSet::SeedFromSubmap; line extraction = RegistrationReference::Build (submap) +
   // BuildRegionReference + RefitSubmapLines.
+  // The time since the previous scan, 0 across a clock jump (counted); remembers this stamp.
+  std::int64_t ScanInterval(std::int64_t stamp_us);
   DPCR_STAGE Pose2 Predict(std::int64_t stamp_us, std::int64_t dt_us);
   // The last scan-to-scan motion scaled to `dt_us` (the constant-velocity part of the prediction),
   // and per second (the de-skew's, core/front_end/scan_motion.hpp).

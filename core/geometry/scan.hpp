@@ -14,6 +14,16 @@ struct Beam {
   std::int32_t offset_us = 0;  // time of this beam relative to Scan::stamp_us (motion de-skew)
 };
 
+// A beam a lidar could have measured: a finite angle within two turns either way of the sensor's
+// x axis, and a time offset within a second of the scan's stamp (a revolution of the slowest
+// lidar, an XV-11 at 3.5 Hz, takes 0.29 s). Any other is counted invalid and used for nothing,
+// not even as free space: a NaN angle once put a NaN hit into the maps.
+constexpr float kMaxBeamAngleRad = 2.0f * 6.28318530718f;
+constexpr std::int32_t kMaxBeamOffsetUs = 1000000;
+inline bool PlausibleBeam(const Beam& b) {
+  return std::fabs(b.angle_rad) <= kMaxBeamAngleRad && b.offset_us >= -kMaxBeamOffsetUs && b.offset_us <= kMaxBeamOffsetUs;
+}
+
 // A beam in 8 bytes, for a scan kept until the next one (FrontEnd's fixed-lag de-skew): the range
 // as it came, the angle in 1/65536 of a turn (0.0055 deg: 1.2 mm at 12 m) and the time offset in
 // steps of 16 us (up to +-0.52 s; a revolution of the slowest lidar, an XV-11 at 3.5 Hz, is 0.29 s).
@@ -40,7 +50,8 @@ inline PackedBeam PackedBeam::Pack(const Beam& b) {
   const std::int32_t steps = static_cast<std::int32_t>(std::lround(std::fmod(b.angle_rad, 6.28318530718f) * kStepsPerRad));
   const std::int32_t low = steps & 0xFFFF;
   p.angle = static_cast<std::int16_t>(low >= 0x8000 ? low - 0x10000 : low);
-  std::int32_t offset = b.offset_us >= 0 ? (b.offset_us + 8) / 16 : -((8 - b.offset_us) / 16);
+  const std::int64_t us = b.offset_us;  // in 64 bits: an offset near INT32_MAX must not overflow
+  std::int64_t offset = us >= 0 ? (us + 8) / 16 : -((8 - us) / 16);
   if (offset > INT16_MAX) offset = INT16_MAX;
   if (offset < INT16_MIN) offset = INT16_MIN;
   p.offset_16us = static_cast<std::int16_t>(offset);

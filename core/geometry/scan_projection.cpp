@@ -9,7 +9,7 @@ namespace dpcr {
 namespace {
 
 bool Valid(const Beam& b, const LidarConfig& lidar) {
-  return std::isfinite(b.range_m) && b.range_m >= lidar.min_range_m && b.range_m <= lidar.max_range_m;
+  return PlausibleBeam(b) && std::isfinite(b.range_m) && b.range_m >= lidar.min_range_m && b.range_m <= lidar.max_range_m;
 }
 
 // The beams of a scan as they came, or packed (PackedBeam), read one at a time.
@@ -45,6 +45,10 @@ ProjectedScan Project(Beams beams, const LidarConfig& lidar, const ScanMotion& m
   Pose2 sensor = lidar.mount;
   for (std::size_t i = 0; i < beams.size(); ++i) {
     const Beam b = BeamAt(beams, i);
+    if (!PlausibleBeam(b)) {
+      ++out.invalid;
+      continue;
+    }
     if (deskew && b.offset_us != cached_offset) {
       cached_offset = b.offset_us;
       sensor = motion.At(b.offset_us) * lidar.mount;

@@ -157,6 +157,8 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                    {"scans_turning_not_mapped", c.scans_turning_not_mapped},
                    {"scans_empty", c.scans_empty},
                    {"scans_too_sparse", c.scans_too_sparse},
+                   {"scans_bad_stamp", c.scans_bad_stamp},
+                   {"scan_stamp_jumps", c.scan_stamp_jumps},
                    {"beams_isolated", c.beams_isolated},
                    {"scans_fused_at_prediction", c.scans_fused_at_prediction},
                    {"scans_kept_out_rejected", c.scans_kept_out_rejected},
