@@ -63,13 +63,16 @@ class Mapper {
     return l;
   }
   void AddOdometry(const OdometrySample& sample) { front_end_.AddOdometry(sample); }
-  // For sources that give increments (robot frame) instead of an absolute wheel pose.
+  // For sources that give increments (robot frame) instead of an absolute wheel pose. An
+  // increment the front end drops (not finite, a kilometre, a bad stamp) is not accumulated: the
+  // next one goes on from the last good pose.
   void AddOdometryIncrement(std::int64_t stamp_us, const Pose2& delta) {
     OdometrySample s;
     s.stamp_us = stamp_us;
     s.pose = last_increment_pose_ * delta;
-    last_increment_pose_ = s.pose;
+    const std::uint32_t rejected = counters().odometry_rejected;
     front_end_.AddOdometry(s);
+    if (counters().odometry_rejected == rejected) last_increment_pose_ = s.pose;
   }
   // kOk when the scan was used; kNotEnoughData when it had no usable beam (counted, pose predicted);
   // kInvalidArgument for a stamp before 1970 or past 2^56 us (counted, nothing changed).

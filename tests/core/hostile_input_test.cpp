@@ -130,3 +130,29 @@ TEST_CASE("A scan hours after the one before it carries no time across the jump"
   CHECK(m->pose().x == Approx(clean->pose().x).margin(0.01));
   CHECK(m->pose().y == Approx(clean->pose().y).margin(0.01));
 }
+
+TEST_CASE("A corrupt odometry increment is dropped and the next goes on from the last good pose") {
+  auto clean = MakeMapper();
+  auto m = MakeMapper();
+  const dpcr::Pose2 step{0.01f, 0.0f, 0.002f};
+  for (int i = 1; i <= 100; ++i) {
+    const std::int64_t t = 10000LL * i;
+    clean->AddOdometryIncrement(t, step);
+    m->AddOdometryIncrement(t, step);
+    if (i == 50) m->AddOdometryIncrement(t + 1, dpcr::Pose2{2e6f, 0.0f, 0.0f});  // 2000 km in 1 us
+  }
+  CHECK(m->counters().odometry_rejected == 1);
+  CHECK(m->counters().odometry_samples == clean->counters().odometry_samples);
+  // Both end where 100 steps take the robot: one scan at the end places it.
+  Tiny::ScanType scan;
+  for (int b = 0; b < 180; ++b) (void)scan.beams.push_back(dpcr::Beam{-3.14159f + 0.0349f * static_cast<float>(b), 2.0f, 0});
+  scan.stamp_us = 1000000;
+  (void)clean->AddScan(scan);
+  (void)m->AddScan(scan);
+  scan.stamp_us += 100000;
+  clean->AddOdometryIncrement(scan.stamp_us, step);
+  m->AddOdometryIncrement(scan.stamp_us, step);
+  (void)clean->AddScan(scan);
+  (void)m->AddScan(scan);
+  CHECK(SamePose(m->pose(), clean->pose()));
+}
