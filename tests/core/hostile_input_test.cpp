@@ -39,16 +39,25 @@ void Feed(Tiny& m, const Run& run, std::size_t first, std::size_t last, bool odo
   }
 }
 
+// A 40-scan room run mapped whole (`clean`), and a mapper that has taken its first 20 scans.
+struct Halfway {
+  Run run{6.0f, 40, 180};
+  std::unique_ptr<Tiny> clean = MakeMapper();
+  std::unique_ptr<Tiny> mapper = MakeMapper();
+  Halfway() {
+    Feed(*clean, run, 0, 40);
+    Feed(*mapper, run, 0, 20);
+  }
+};
+
 bool SamePose(const dpcr::Pose2& a, const dpcr::Pose2& b) { return a.x == b.x && a.y == b.y && a.theta == b.theta; }
 
 }  // namespace
 
 TEST_CASE("A scan stamped before 1970 or past 2 to the 56 us is refused and changes nothing") {
-  const Run run(6.0f, 40, 180);
-  auto clean = MakeMapper();
-  Feed(*clean, run, 0, 40);
-  auto m = MakeMapper();
-  Feed(*m, run, 0, 20);
+  const Halfway h;
+  const Run& run = h.run;
+  Tiny* m = h.mapper.get();
   const dpcr::Pose2 before = m->pose();
   for (const std::int64_t stamp : {std::numeric_limits<std::int64_t>::min(), std::int64_t{-1},
                                    std::numeric_limits<std::int64_t>::max(), (std::int64_t{1} << 56) + 1}) {
@@ -60,16 +69,14 @@ TEST_CASE("A scan stamped before 1970 or past 2 to the 56 us is refused and chan
   Feed(*m, run, 20, 40);
   CHECK(m->counters().scans_bad_stamp == 4);
   CHECK(m->counters().scans == 44);
-  CHECK(clean->counters().scans_bad_stamp == 0);
-  CHECK(SamePose(m->pose(), clean->pose()));  // the same run, bit for bit
+  CHECK(h.clean->counters().scans_bad_stamp == 0);
+  CHECK(SamePose(m->pose(), h.clean->pose()));  // the same run, bit for bit
 }
 
 TEST_CASE("Odometry stamped at the int64 extremes or turning past any gyro is dropped and counted") {
-  const Run run(6.0f, 40, 180);
-  auto clean = MakeMapper();
-  Feed(*clean, run, 0, 40);
-  auto m = MakeMapper();
-  Feed(*m, run, 0, 20);
+  const Halfway h;
+  const Run& run = h.run;
+  Tiny* m = h.mapper.get();
   dpcr::OdometrySample bad = run.odometry[199];
   for (const std::int64_t stamp : {std::numeric_limits<std::int64_t>::min(), std::numeric_limits<std::int64_t>::max()}) {
     bad.stamp_us = stamp;
@@ -81,7 +88,7 @@ TEST_CASE("Odometry stamped at the int64 extremes or turning past any gyro is dr
   m->AddOdometry(bad);
   Feed(*m, run, 20, 40);
   CHECK(m->counters().odometry_rejected == 3);
-  CHECK(SamePose(m->pose(), clean->pose()));
+  CHECK(SamePose(m->pose(), h.clean->pose()));
 }
 
 TEST_CASE("Beams with a wild angle or time offset count as invalid and place nothing") {
