@@ -62,7 +62,7 @@ class Mapper {
     l.region_box_cells = kRegionCells;
     return l;
   }
-  void AddOdometry(const OdometrySample& sample) { front_end_.AddOdometry(sample); }
+  void AddOdometry(const OdometrySample& sample) { (void)front_end_.AddOdometry(sample); }
   // For sources that give increments (robot frame) instead of an absolute wheel pose. An
   // increment the front end drops (not finite, a kilometre, a bad stamp) is not accumulated: the
   // next one goes on from the last good pose.
@@ -70,9 +70,7 @@ class Mapper {
     OdometrySample s;
     s.stamp_us = stamp_us;
     s.pose = last_increment_pose_ * delta;
-    const std::uint32_t rejected = counters().odometry_rejected;
-    front_end_.AddOdometry(s);
-    if (counters().odometry_rejected == rejected) last_increment_pose_ = s.pose;
+    if (front_end_.AddOdometry(s)) last_increment_pose_ = s.pose;
   }
   // kOk when the scan was used; kNotEnoughData when it had no usable beam (counted, pose predicted);
   // kInvalidArgument for a stamp before 1970 or past 2^56 us (counted, nothing changed).

@@ -14,9 +14,6 @@ namespace {
 // any floor a vacuum or a research robot drives, and short of where float positions fail.
 constexpr float kMaxOdometryCoordinateM = 100000.0f;
 
-// Stamps are microseconds of a clock that started at or after 1970 (a boot clock, Unix time) and
-// reads less than 2^56 us (2283 years): the difference of any two never overflows.
-constexpr std::int64_t kMaxStampUs = std::int64_t{1} << 56;
 // A scan this long after the one before it (or this far before it) follows a clock jump, or a
 // sleep of the robot: nothing measured per second (the constant velocity, a turn rate, a
 // rejection streak's time) is carried across it. Longer than any lidar dropout a run survives.
@@ -25,8 +22,6 @@ constexpr std::int64_t kMaxScanGapUs = 600 * 1000000LL;
 // A yaw rate past any gyro's range (vacuums' saturate at 35 rad/s): a rate of 1e30 integrated to
 // an infinite heading once.
 constexpr float kMaxGyroRateRadS = 100.0f;
-
-bool PlausibleStamp(std::int64_t stamp_us) { return stamp_us >= 0 && stamp_us <= kMaxStampUs; }
 
 bool PlausibleOdometry(const OdometrySample& s) {
   // Written so that NaN fails every test.
@@ -82,12 +77,12 @@ Status FrontEnd::Init(const MapperConfig& config) {
   return Status::kOk;
 }
 
-void FrontEnd::AddOdometry(const OdometrySample& sample) {
+bool FrontEnd::AddOdometry(const OdometrySample& sample) {
   // A CARMEN pose of 1e6 m once opened a region 1000 km away: such a sample is counted and dropped,
   // the prediction comes from the samples around it.
   if (!PlausibleOdometry(sample)) {
     ++counters_.odometry_rejected;
-    return;
+    return false;
   }
   const std::uint32_t before = odometry_.steps_back();
   wheel_check_.AddOdometry(sample);
@@ -97,6 +92,7 @@ void FrontEnd::AddOdometry(const OdometrySample& sample) {
   // A stamp stepping back breaks interpolation, not the odometry frame: increments go on.
   if (odometry_.steps_back() != before) ++counters_.odometry_steps_back;
   ++counters_.odometry_samples;
+  return true;
 }
 
 Pose2 FrontEnd::ConstantVelocity(std::int64_t dt_us) const {

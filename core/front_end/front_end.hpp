@@ -86,7 +86,8 @@ class FrontEnd {
   FrontEnd& operator=(const FrontEnd&) = delete;
 
   Status Init(const MapperConfig& config);
-  void AddOdometry(const OdometrySample& sample);
+  // false: the sample was implausible (counted in odometry_rejected) and dropped.
+  bool AddOdometry(const OdometrySample& sample);
   Status AddScan(Span<const Beam> beams, std::int64_t stamp_us);
 
   Pose2 pose() const { return submap_pose_ * pose_; }

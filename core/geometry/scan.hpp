@@ -14,6 +14,12 @@ struct Beam {
   std::int32_t offset_us = 0;  // time of this beam relative to Scan::stamp_us (motion de-skew)
 };
 
+// Stamps (of scans and odometry samples) are microseconds of a clock that started at or after
+// 1970 (a boot clock, Unix time) and reads less than 2^56 us (2283 years): the difference of any
+// two never overflows. The front end refuses any other.
+constexpr std::int64_t kMaxStampUs = std::int64_t{1} << 56;
+inline bool PlausibleStamp(std::int64_t stamp_us) { return stamp_us >= 0 && stamp_us <= kMaxStampUs; }
+
 // A beam a lidar could have measured: a finite angle within two turns either way of the sensor's
 // x axis, and a time offset within a second of the scan's stamp (a revolution of the slowest
 // lidar, an XV-11 at 3.5 Hz, takes 0.29 s). Any other is counted invalid and used for nothing,

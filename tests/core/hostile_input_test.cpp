@@ -60,7 +60,7 @@ TEST_CASE("A scan stamped before 1970 or past 2 to the 56 us is refused and chan
   Tiny* m = h.mapper.get();
   const dpcr::Pose2 before = m->pose();
   for (const std::int64_t stamp : {std::numeric_limits<std::int64_t>::min(), std::int64_t{-1},
-                                   std::numeric_limits<std::int64_t>::max(), (std::int64_t{1} << 56) + 1}) {
+                                   std::numeric_limits<std::int64_t>::max(), dpcr::kMaxStampUs + 1}) {
     Tiny::ScanType scan = run.scans[20];
     scan.stamp_us = stamp;
     CHECK(m->AddScan(scan) == dpcr::Status::kInvalidArgument);
