@@ -154,12 +154,14 @@ int main(int argc, char** argv) {
   Write(dir, "fuzz_map_file", "tiny_map_resealed", resealed);
   Write(dir, "fuzz_mapper_config", "defaults", Bytes{});
   Write(dir, "fuzz_mapper_config", "heading_jump", Bytes{0xB0});
-  // 16 scans with each kind of odometry, and a few edits of beams and stamps.
-  Write(dir, "fuzz_mapper_scans", "wheels", Bytes{0x0F});
-  Write(dir, "fuzz_mapper_scans", "wheels_and_gyro", Bytes{0x1F});
-  Write(dir, "fuzz_mapper_scans", "gyro_only", Bytes{0x2F});
-  Write(dir, "fuzz_mapper_scans", "lidar_only", Bytes{0x3F});
-  Write(dir, "fuzz_mapper_scans", "edited", Bytes{0x0F, 0x87, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x02, 0x44, 0x00});
+  // Four scans with each kind of odometry, and a few edits of beams and stamps.
+  // Head byte: bits 0-1 scans - 1, bits 2-3 scans per submap - 2, bits 4-5 the odometry.
+  Write(dir, "fuzz_mapper_scans", "wheels", Bytes{0x07});
+  Write(dir, "fuzz_mapper_scans", "wheels_two_scan_submaps", Bytes{0x03});
+  Write(dir, "fuzz_mapper_scans", "wheels_and_gyro", Bytes{0x17});
+  Write(dir, "fuzz_mapper_scans", "gyro_only", Bytes{0x27});
+  Write(dir, "fuzz_mapper_scans", "lidar_only", Bytes{0x37});
+  Write(dir, "fuzz_mapper_scans", "edited", Bytes{0x07, 0x17, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x02, 0x24, 0x00});
   std::printf("seeds written to %s (map file %zu bytes)\n", dir.string().c_str(), map.size());
   return 0;
 }
