@@ -1,10 +1,27 @@
 #include "core/front_end/scan_motion.hpp"
 
+#include <cmath>
+
 namespace dpcr {
+namespace {
+
+Pose2 PlausibleVelocity(const Pose2& v) {
+  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.theta)) return Pose2{};
+  Pose2 out = v;
+  const float speed = std::hypot(v.x, v.y);
+  if (speed > ScanMotion::kMaxSpeedMps) {
+    out.x *= ScanMotion::kMaxSpeedMps / speed;
+    out.y *= ScanMotion::kMaxSpeedMps / speed;
+  }
+  out.theta = std::fmax(-ScanMotion::kMaxTurnRateRadS, std::fmin(ScanMotion::kMaxTurnRateRadS, v.theta));
+  return out;
+}
+
+}  // namespace
 
 ScanMotion::ScanMotion(const OdometryBuffer& odometry, bool gyro_heading, const Pose2& velocity_per_s,
                        std::int64_t stamp_us)
-    : odometry_(odometry), velocity_(velocity_per_s), stamp_us_(stamp_us) {
+    : odometry_(odometry), velocity_(PlausibleVelocity(velocity_per_s)), stamp_us_(stamp_us) {
   wheels_ = !odometry.empty() && odometry.newest().has_wheels;
   if (wheels_) odom_at_stamp_inv_ = odometry.PoseAt(stamp_us).Inverse();
   gyro_ = (gyro_heading || !wheels_) && !odometry.empty() && odometry.GyroYawAt(stamp_us, &yaw_at_stamp_);

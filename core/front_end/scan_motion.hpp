@@ -16,6 +16,12 @@ namespace dpcr {
 class ScanMotion {
  public:
   // `velocity_per_s`: the constant-velocity motion over one second (x, y, theta in the robot frame).
+  // Past kMaxSpeedMps or kMaxTurnRateRadS it is scaled down to them, and one that is not finite
+  // is no motion: it is a scan-to-scan step over the time between two stamps, and two scans
+  // stamped within microseconds of each other (or at the same time: 0 / 0) made it a NaN that
+  // went into the maps (fuzz_mapper_scans).
+  static constexpr float kMaxSpeedMps = 20.0f;
+  static constexpr float kMaxTurnRateRadS = 100.0f;
   ScanMotion(const OdometryBuffer& odometry, bool gyro_heading, const Pose2& velocity_per_s, std::int64_t stamp_us);
 
   // The robot's pose at stamp + offset_us in its frame at the stamp.

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 
@@ -162,4 +163,25 @@ TEST_CASE("A corrupt odometry increment is dropped and the next goes on from the
   (void)clean->AddScan(scan);
   (void)m->AddScan(scan);
   CHECK(SamePose(m->pose(), clean->pose()));
+}
+
+TEST_CASE("Lidar-only scans stamped at the same time as the one before them are mapped without NaN") {
+  // The fixed-lag de-skew divided the motion between two scans by the time between their stamps:
+  // 0 / 0 when a recorder stamped two revolutions alike, and a NaN hit reached the maps
+  // (fuzz_mapper_scans, under UBSan: FloorToInt(NaN)). The motion is now none.
+  const Run run(6.0f, 40, 180);
+  auto clean = MakeMapper();
+  Feed(*clean, run, 0, 40, false);
+  Run twice = run;
+  for (std::size_t i = 21; i < 40; i += 4) twice.scans[i].stamp_us = twice.scans[i - 1].stamp_us;
+  auto m = MakeMapper();
+  Feed(*m, twice, 0, 40, false);
+  CHECK(m->counters().scans == 40);
+  CHECK(std::isfinite(m->pose().x));
+  CHECK(std::isfinite(m->pose().theta));
+  CHECK(m->pose().x == Approx(clean->pose().x).margin(0.05));
+  CHECK(m->pose().y == Approx(clean->pose().y).margin(0.05));
+  const dpcr::CellBox a = clean->MapBounds(), b = m->MapBounds();
+  CHECK((std::abs(a.min.x - b.min.x) <= 2 && std::abs(a.max.x - b.max.x) <= 2));
+  CHECK((std::abs(a.min.y - b.min.y) <= 2 && std::abs(a.max.y - b.max.y) <= 2));
 }

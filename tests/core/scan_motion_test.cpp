@@ -70,6 +70,22 @@ TEST_CASE("Without odometry the de-skew is the constant velocity, and none witho
   CHECK(!ScanMotion(empty, false, Pose2::Identity(), 0).moves());
 }
 
+TEST_CASE("A constant velocity that is not finite is no motion and a huge one is bounded") {
+  // Two scans stamped at the same time made the lidar-only path's velocity 0 / 0 (fuzz_mapper_scans).
+  const OdometryBuffer empty;
+  for (const float bad : {NAN, INFINITY, -INFINITY}) {
+    const ScanMotion m(empty, false, Pose2{bad, 0.1f, 0.2f}, 0);
+    CHECK(!m.moves());
+    CHECK(m.At(1000000).x == 0.0f);
+  }
+  // A step of a metre over a microsecond: 10^6 m/s and rad/s.
+  const ScanMotion fast(empty, false, Pose2{6e5f, -8e5f, -1e6f}, 0);
+  const Pose2 p = fast.At(100000);
+  CHECK(std::hypot(p.x, p.y) == Approx(0.1f * ScanMotion::kMaxSpeedMps).epsilon(1e-5));
+  CHECK(p.x / p.y == Approx(-0.75f).epsilon(1e-5));  // the direction kept
+  CHECK(fast.velocity().theta == -ScanMotion::kMaxTurnRateRadS);
+}
+
 TEST_CASE("A scan kept packed projects within a millimetre of the scan it came from") {
   // FrontEnd's fixed-lag de-skew keeps the waiting scan as PackedBeam (8 bytes a beam, not 12).
   std::vector<dpcr::Beam> beams;
