@@ -84,10 +84,14 @@ bool FrontEnd::AddOdometry(const OdometrySample& sample) {
     ++counters_.odometry_rejected;
     return false;
   }
+  // A heading is an angle however many turns its source counts: two samples at -3.4e38 and
+  // 3.4e38 rad (finite) once differed by infinity, and the de-skew's pose became NaN.
+  OdometrySample wrapped = sample;
+  if (std::fabs(wrapped.pose.theta) > kPi) wrapped.pose.theta = NormalizeAngle(wrapped.pose.theta);
   const std::uint32_t before = odometry_.steps_back();
-  wheel_check_.AddOdometry(sample);
-  const OdometrySample used = wheel_check_.Filter(sample);
-  if (used.has_wheels != sample.has_wheels) ++counters_.odometry_without_wheel_translation;
+  wheel_check_.AddOdometry(wrapped);
+  const OdometrySample used = wheel_check_.Filter(wrapped);
+  if (used.has_wheels != wrapped.has_wheels) ++counters_.odometry_without_wheel_translation;
   odometry_.Add(used);
   // A stamp stepping back breaks interpolation, not the odometry frame: increments go on.
   if (odometry_.steps_back() != before) ++counters_.odometry_steps_back;

@@ -185,3 +185,29 @@ TEST_CASE("Lidar-only scans stamped at the same time as the one before them are 
   CHECK((std::abs(a.min.x - b.min.x) <= 2 && std::abs(a.max.x - b.max.x) <= 2));
   CHECK((std::abs(a.min.y - b.min.y) <= 2 && std::abs(a.max.y - b.max.y) <= 2));
 }
+
+TEST_CASE("Odometry headings of any finite size are angles and never make a pose NaN") {
+  // Two wheel samples at -3.3e38 and 3.3e38 rad (finite, so not refused) differed by infinity
+  // where the de-skew interpolated between them, and a NaN hit reached the maps
+  // (fuzz_mapper_scans, under UBSan: FloorToInt(NaN)). Headings past a half turn are now wrapped
+  // on entry. This one is a whole number of turns and 1.7e-6 rad (the run's true heading is 0), so
+  // the run must come out as without it.
+  const float turns = 0x1.f7b7d2p+127f;
+  REQUIRE(std::fabs(dpcr::NormalizeAngle(turns)) < 1e-5f);
+  REQUIRE(std::fabs(dpcr::NormalizeAngle(-turns)) < 1e-5f);
+  const Halfway h;
+  const Run& run = h.run;
+  Tiny* m = h.mapper.get();
+  Run hostile = run;
+  for (std::size_t i = 200; i < hostile.odometry.size(); ++i) {
+    REQUIRE(hostile.odometry[i].pose.theta == 0.0f);
+    hostile.odometry[i].pose.theta = i % 2 == 0 ? turns : -turns;
+  }
+  Feed(*m, hostile, 20, 40);
+  CHECK(m->counters().scans == 40);
+  CHECK(m->counters().odometry_rejected == 0);
+  CHECK(m->counters().updates_out_of_box == h.clean->counters().updates_out_of_box);
+  CHECK(m->pose().x == Approx(h.clean->pose().x).margin(0.002));
+  CHECK(m->pose().y == Approx(h.clean->pose().y).margin(0.002));
+  CHECK(m->pose().theta == Approx(h.clean->pose().theta).margin(0.001));
+}
