@@ -131,7 +131,12 @@ bool BackEnd::MatchMaps(Span<RegionalMap> regions, int older, int newer) {
                                              Span<Point2>(s_.cloud.data(), static_cast<std::size_t>(config_->max_cloud_points)));
   if (n < 20 || ref_cells < 20) return false;
   BuildReference(ref);
-  const Pose2 initial = Between(ref.anchor, target.anchor);
+  // A pair measured before is registered again from its last measurement, not from the graph's
+  // estimate: where the maps leave the registration free (along a corridor, between look-alike
+  // doorways) it ends near where it starts, and started from a graph bent by a wrong closure it
+  // would measure the bend and hold it in place.
+  const int previous = s_.graph->FindEdge(EdgeKind::kMapMatch, older, newer);
+  const Pose2 initial = previous >= 0 ? s_.graph->edge(previous).measurement : Between(ref.anchor, target.anchor);
   const RegistrationResult r = RegisterImproved(*s_.reference, Span<const Point2>(s_.cloud.data(), n), initial, nullptr,
                                                 config_->registration, s_.correspondences);
   if (r.verdict != Status::kOk) return false;

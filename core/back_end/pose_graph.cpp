@@ -87,10 +87,10 @@ Status PoseGraph::AddOrReplaceEdge(const GraphEdge& edge) {
   return Status::kOk;
 }
 
-int PoseGraph::FindEdge(const GraphEdge& edge) const {
+int PoseGraph::FindEdge(EdgeKind kind, int from, int to) const {
   for (int k = 0; k < edge_count_; ++k) {
     const GraphEdge& e = edges_[static_cast<std::size_t>(k)];
-    if (e.kind == edge.kind && e.from == edge.from && e.to == edge.to) return k;
+    if (e.kind == kind && e.from == from && e.to == to) return k;
   }
   return -1;
 }

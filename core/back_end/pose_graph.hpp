@@ -96,12 +96,13 @@ class PoseGraph {
   const Pose2& vertex(int i) const { return vertices_[static_cast<std::size_t>(i)]; }
   void set_vertex(int i, const Pose2& p) { vertices_[static_cast<std::size_t>(i)] = p; }
   const GraphEdge& edge(int i) const { return edges_[static_cast<std::size_t>(i)]; }
+  // The index of the edge of `kind` from `from` to `to`, -1 if none.
+  int FindEdge(EdgeKind kind, int from, int to) const;
   // The squared Mahalanobis error of an edge at the current vertices.
   float EdgeChi2(int i) const;
 
  private:
-  // The index of the edge of the same kind between the same vertices, -1 if none.
-  int FindEdge(const GraphEdge& edge) const;
+  int FindEdge(const GraphEdge& edge) const { return FindEdge(edge.kind, edge.from, edge.to); }
   // Fills the normal equations at the current vertices; returns the robust cost.
   float Linearize(float phi, int* downweighted);
   // Solves normal * step = rhs in place (packed Cholesky); false if not positive definite.
