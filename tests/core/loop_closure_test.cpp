@@ -7,13 +7,9 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <cstdint>
-#include <memory>
 #include <vector>
 
-#include "core/back_end/back_end.hpp"
-#include "core/back_end/back_end_config.hpp"
-#include "tests/core/registration_fixtures.hpp"
+#include "tests/core/two_region_back_end.hpp"
 
 using dpcr::Point2;
 using dpcr::Pose2;
@@ -27,41 +23,11 @@ std::vector<Segment> Corridor() { return {{{-6.0f, -0.775f}, {6.0f, -0.775f}}, {
 
 // Region 0 holds the corridor; region 1, where the robot's pose is known, is its neighbour along
 // it (its map plays no part in a closure into region 0).
-struct Setup {
-  dpcr_test::GridFixture fixture;
-  std::unique_ptr<dpcr::MatchGrid> match_grid = std::make_unique<dpcr::MatchGrid>(128, 128);
-  std::unique_ptr<dpcr::PoseGraphStorage<4, 8>> graph = std::make_unique<dpcr::PoseGraphStorage<4, 8>>();
-  std::vector<Point2> cloud = std::vector<Point2>(400);
-  std::vector<dpcr::MatchCell> rotated = std::vector<dpcr::MatchCell>(512);
-  std::vector<dpcr::Correspondence> correspondences = std::vector<dpcr::Correspondence>(512);
-  std::vector<std::int32_t> jobs = std::vector<std::int32_t>(8);
-  dpcr::RegionalMap maps[2];
-  dpcr::BackEndConfig config;
-  std::unique_ptr<dpcr::BackEnd> back_end;
-
+struct Setup : dpcr_test::TwoRegionBackEnd {
   explicit Setup(float closure_prior_info) {
-    fixture.grid->Reset(dpcr::CellIndex{-4, -4});  // the box from -6.4 m to 6.4 m
-    for (const Segment& s : Corridor()) fixture.Draw(s);
-    for (dpcr::RegionalMap& m : maps) {
-      m.grid = fixture.grid.get();
-      m.scans_inserted = 1000;
-    }
-    maps[1].anchor = Pose2{4.0f, 0.0f, 0.0f};
-    dpcr::BackEndStorage storage;
-    storage.graph = graph.get();
-    storage.match_grid = match_grid.get();
-    storage.reference = fixture.ref.get();
-    storage.cloud = dpcr::Span<Point2>(cloud.data(), cloud.size());
-    storage.rotated = dpcr::Span<dpcr::MatchCell>(rotated.data(), rotated.size());
-    storage.correspondences = dpcr::Span<dpcr::Correspondence>(correspondences.data(), correspondences.size());
-    storage.jobs = dpcr::Span<std::int32_t>(jobs.data(), jobs.size());
     config.closure_prior_info = closure_prior_info;
-    back_end = std::make_unique<dpcr::BackEnd>(storage);
-    back_end->Init(config, 4.0f, dpcr::ReferenceConfig{});
-    back_end->AddRegion(regions(), 0, -1);
-    back_end->AddRegion(regions(), 1, 0);
+    Start(Corridor(), Pose2{4.0f, 0.0f, 0.0f});
   }
-  dpcr::Span<dpcr::RegionalMap> regions() { return dpcr::Span<dpcr::RegionalMap>(maps, 2); }
 
   // The robot re-enters region 0 from region 1 with its submap (here one scan, in its own frame)
   // believed at `believed`; the search runs in slices to its end, then the closure is decided.

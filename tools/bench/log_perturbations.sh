@@ -1,9 +1,10 @@
 #!/bin/sh
 # The relations error of one CARMEN log replayed under small perturbations: range limits from 15
-# to 28 m, each at the default region width and at 3.6 m. One replay says little: the region
+# to 28 m, each at the default region width and at 3.6 m (WIDTHS). One replay says little: the region
 # graph decides which loop closures it takes, and a change that moves nothing in the mapping can
 # move one replay of intel.clf from 0.03 to 0.3 m (docs/back-end.md, "Intel under perturbation").
 # The mean, the median and the draws over 5 cm say more than the default replay alone.
+# WIDTHS="3.6 3.8 4.2" doubles the draws (64) where 32 cannot tell two builds apart.
 # Usage: tools/bench/log_perturbations.sh [path/to/dpcr-replay] [log.clf] [log.relations] [replay options...]
 # Defaults: build/host/host_sim/apps/dpcr-replay, $DPCR_DATA_DIR/intel.clf (DPCR_DATA_DIR defaults
 # to ../shared/data) and the log's .relations beside it. Runs as many replays at once as `nproc`
@@ -23,9 +24,12 @@ JOBS=$(nproc 2>/dev/null || echo 1)
 
 # One draw per line: a name, then the replay options that make it.
 DRAWS="$OUT/draws.txt"
+# WIDTHS: the region widths tried besides the default at each range limit ("3.6 3.8 4.2": 64 draws).
 for RANGE in 20 15 15.5 16 16.5 17 17.5 18 18.5 19 19.5 21 22 23 25 28; do
   echo "range$RANGE --max-range $RANGE"
-  echo "range$RANGE-width3.6 --max-range $RANGE --region-width 3.6"
+  for WIDTH in ${WIDTHS:-3.6}; do
+    echo "range$RANGE-width$WIDTH --max-range $RANGE --region-width $WIDTH"
+  done
 done > "$DRAWS"
 
 # Each draw prints "name error" (the all-pairs translation mean, m) or fails the whole run.
