@@ -10,7 +10,6 @@
 
 #include "tests/core/two_region_back_end.hpp"
 
-using dpcr::Point2;
 using dpcr::Pose2;
 using dpcr_test::Segment;
 
