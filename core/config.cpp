@@ -38,7 +38,7 @@ bool LidarOk(const LidarConfig& l) {
   return In(l.min_range_m, 0.0f, kMaxRangeM) && AboveUpTo(l.max_range_m, l.min_range_m, kMaxRangeM) &&
          In(l.no_return_free_m, 0.0f, l.max_range_m) && In(l.mount.x, -kMaxMountOffsetM, kMaxMountOffsetM) &&
          In(l.mount.y, -kMaxMountOffsetM, kMaxMountOffsetM) && In(l.mount.theta, -2.0f * kPi, 2.0f * kPi) &&
-         In(l.range_noise_m, 0.0f, 0.5f) && In(l.near_weight_range_m, 0.0f, 10.0f) &&
+         In(l.range_noise_m, 0.0f, 0.5f) && In(l.smoothing_max_gap_beams, 1.0f, 10.0f) && In(l.near_weight_range_m, 0.0f, 10.0f) &&
          In(l.map_max_turn_rate_rad_s, 0.0f, 100.0f);
 }
 

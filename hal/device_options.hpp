@@ -30,11 +30,13 @@ struct DeviceOptions {
 // of the range, an XV-11 1 cm + 1 % (host_sim/sim/sensors.hpp); both sit at a vacuum's ankle
 // height, where near returns weigh less (LidarConfig::near_weight_range_m). An LD06's scans taken
 // in a fast turn stay out of the regional maps (LidarConfig::map_max_turn_rate_rad_s; an XV-11's
-// do not: measured, both in core/config.hpp).
+// do not: measured, both in core/config.hpp). An XV-11's returns are smoothed along walls across
+// its missing readings (LidarConfig::smoothing_max_gap_beams), an LD06's between adjacent beams.
 inline void ApplyLidarModel(LidarKind kind, LidarConfig* lidar) {
   const bool xv11 = kind == LidarKind::kXv11;
   lidar->drop_isolated_returns = xv11;
   lidar->range_noise_m = xv11 ? 0.04f : 0.025f;
+  lidar->smoothing_max_gap_beams = xv11 ? kXv11SmoothingMaxGapBeams : LidarConfig{}.smoothing_max_gap_beams;
   lidar->near_weight_range_m = kVacuumNearWeightRangeM;
   lidar->map_max_turn_rate_rad_s = xv11 ? 0.0f : kLd06MapMaxTurnRateRadS;
 }

@@ -69,6 +69,7 @@ ProjectedScan Project(Beams beams, const LidarConfig& lidar, const ScanMotion& m
   if (lidar.range_noise_m > 0.0f && beams.size() > 0) {
     ReturnSmoothingConfig smoothing;
     smoothing.noise_m = lidar.range_noise_m;
+    smoothing.max_gap_beams = lidar.smoothing_max_gap_beams;
     // A revolution's beams, evenly spaced (a 360-degree lidar; a narrower one only lets wider gaps through).
     const float beam_step_rad = 2.0f * kPi / static_cast<float>(beams.size());
     (void)SmoothReturns(Span<Point2>(hits_out.data(), out.hits), Point2{lidar.mount.x, lidar.mount.y}, beam_step_rad,

@@ -290,6 +290,7 @@ int ReplayDevice(const Options& opt) {
                        {"track_width_m", device.wheels.track_width_m}, {"ticks_per_rev", device.wheels.ticks_per_rev},
                        {"max_range_m", device.max_range_m}, {"laser_offset_m", device.laser_offset_m},
                        {"lidar_range_noise_m", config.lidar.range_noise_m},
+                       {"lidar_smoothing_max_gap_beams", config.lidar.smoothing_max_gap_beams},
                        {"lidar_near_weight_range_m", config.lidar.near_weight_range_m},
                        {"lidar_map_max_turn_rate_dps", config.lidar.map_max_turn_rate_rad_s * 180.0 / M_PI},
                        {"heading", opt.heading}};

@@ -132,6 +132,7 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(lidar.max_range_m, kPositive),
       FLOAT_FIELD(lidar.no_return_free_m, kNonNegative),
       FLOAT_FIELD(lidar.range_noise_m, kNonNegative),
+      FLOAT_FIELD(lidar.smoothing_max_gap_beams, (std::vector<double>{0.5, -1.0, kNaN, kInf, 11.0})),
       FLOAT_FIELD(lidar.near_weight_range_m, kNonNegative),
       FLOAT_FIELD(lidar.map_max_turn_rate_rad_s, kNonNegative),
       FLOAT_FIELD(lidar.mount.x, kOffset),

@@ -89,3 +89,24 @@ TEST_CASE("Returns across a gap or of a lidar whose noise is not known are left 
   CHECK(SmoothReturns(Span<Point2>(sparse.data(), sparse.size()), Point2{}, kStep, Ld06()) == 0);
   for (std::size_t i = 0; i < hits.size(); ++i) CHECK((hits[i].x == measured[i].x && hits[i].y == measured[i].y));
 }
+
+TEST_CASE("Returns with missing beams between them are smoothed as far as the gap allowed") {
+  // An XV-11-like wall: 2 cm of noise, and a third of the beams without a return (seeded).
+  const std::vector<Point2> all = Returns(2.0f, 0.0f, 120, 0.02f, 11, -60.0f * kStep);
+  std::mt19937 rng(5);
+  std::bernoulli_distribution missing(0.33);
+  std::vector<Point2> hits;
+  for (const Point2& p : all) {
+    if (!missing(rng)) hits.push_back(p);
+  }
+  const float before = RmsOffWall(hits, 2.0f);
+  std::vector<Point2> adjacent_only = hits;
+  const std::size_t moved_adjacent = SmoothReturns(Span<Point2>(adjacent_only.data(), adjacent_only.size()), Point2{}, kStep, Ld06());
+  ReturnSmoothingConfig bridging = Ld06();
+  bridging.max_gap_beams = 3.5f;  // up to two missing beams between neighbours
+  const std::size_t moved = SmoothReturns(Span<Point2>(hits.data(), hits.size()), Point2{}, kStep, bridging);
+  CHECK(moved_adjacent < hits.size() / 4);  // few windows of seven adjacent returns
+  CHECK(moved > 2 * moved_adjacent);
+  CHECK(moved >= hits.size() / 2);
+  CHECK(RmsOffWall(hits, 2.0f) < 0.75f * before);
+}
