@@ -89,8 +89,8 @@ struct LidarConfig {
   // 1.5: adjacent beams only. An XV-11 loses 30-40 % of its readings, so few of its windows of
   // seven adjacent returns are whole (0.7^7, one in twelve) and its returns went unsmoothed; it
   // sets 3.5 (hal/device_options.hpp): XV-11 + gyro heading, apartment seeds 1-30, LocErr_ave
-  // 0.0386 -> 0.0348 m, and the lidar-only and gyro-only runs that lost the map on main keep it
-  // (docs/back-end.md, "The XV-11's missing readings").
+  // 0.0386 -> 0.0348 m, through the device files 0.0406 -> 0.0341 m (docs/back-end.md, "The
+  // XV-11's missing readings").
   float smoothing_max_gap_beams = 1.5f;
   // A vacuum's lidar sits at ankle height: feet, table and chair legs, a pet stand right beside
   // it, and near the lidar a surface is sampled ever more densely (the LD06's beams 7 mm apart
