@@ -379,8 +379,7 @@ bool Firmware::WriteTrajectory(std::string* error) const {
     return false;
   }
   for (const MapperSink::ScanRecord& r : sink_->trajectory) {
-    Pose2 pose = r.online;
-    if (r.region >= 0 && r.region < mapper_->region_count()) pose = mapper_->region_anchor(r.region) * r.in_region;
+    const Pose2 pose = mapper_->ScanWorldPose(r.stamp_us, r.region, r.in_region, r.online);
     const double half = 0.5 * static_cast<double>(pose.theta);
     const std::int64_t s = r.stamp_us / 1000000;
     const std::int64_t us = r.stamp_us % 1000000;

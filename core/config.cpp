@@ -128,7 +128,11 @@ bool FrontEndOk(const FrontEndConfig& f, const GridConfig& g) {
   // lie on the grid's diagonals.
   const bool turn = In(f.grid_turn_rad, 0.0f, 0.7f) && In(f.grid_turn_band_rad, 0.0f, 0.35f) &&
                     (f.grid_turn_rad == 0.0f || f.grid_turn_band_rad <= 0.5f * f.grid_turn_rad);
-  return submap && periods && regions && registration && turn;
+  const StartHeadingConfig& h = f.start_heading;
+  const bool start = In(h.window_s, 0.0f, 600.0f) && In(h.skip_s, 0.0f, h.window_s) && In(h.min_samples, 2, 10000) &&
+                     In(h.min_offset_rad, 0.0f, h.max_offset_rad) && In(h.max_offset_rad, 0.0f, 0.35f) &&
+                     In(h.max_bias_rad_s, 0.0f, 1.0f);
+  return submap && periods && regions && registration && turn && start;
 }
 
 bool SearchOk(const CorrelativeSearchConfig& c) {

@@ -129,6 +129,19 @@ constexpr ReferenceConfig ReferenceWithThreshold(std::int16_t obstacle_threshold
   return c;
 }
 
+// The start heading refined with the gyro (core/front_end/start_heading.hpp): only when the gyro
+// gives the heading (FrontEndConfig::gyro_heading, or a gyro without wheels), not for a loaded map.
+struct StartHeadingConfig {
+  float window_s = 30.0f;  // the fit's window from the start scan; 0 = never refined
+  float skip_s = 1.0f;     // the start's first turn, registered to the first scan's walls alone
+  int min_samples = 20;    // accepted scans in the window
+  // The fit's own error is ~0.15 degrees (gyro noise, registration noise): a smaller offset is left
+  // alone (XV-11 with a gyro heading, apartment seeds 1-80; LD06 with a gyro heading unchanged).
+  float min_offset_rad = 0.0035f;  // 0.2 degrees
+  float max_offset_rad = 0.035f;   // 2 degrees: more is not the first scan's noise
+  float max_bias_rad_s = 0.02f;    // 1.1 degrees/s: a gyro further off is not fitted
+};
+
 struct FrontEndConfig {
   int submap_scans = 20;          // N: scans fused into the submap
   int submap_line_period = 10;    // K1: re-extract submap lines every K1 scans
@@ -253,6 +266,7 @@ struct FrontEndConfig {
   // a loaded map: its frame is kept.
   float grid_turn_rad = 0.2618f;       // 15 degrees
   float grid_turn_band_rad = 0.1222f;  // 7 degrees
+  StartHeadingConfig start_heading;
 };
 
 struct MapperConfig {

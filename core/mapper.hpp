@@ -95,6 +95,13 @@ class Mapper {
   // the map) follows every later optimisation.
   int last_scan_region() const { return front_end_.last_scan_region(); }
   Pose2 last_scan_in_region() const { return front_end_.last_scan_in_region(); }
+  // A recorded scan's final world pose (FrontEnd::ScanWorldPose): record (stamp, last_scan_region(),
+  // last_scan_in_region(), pose()) after each AddScan, and ask at the end of the run.
+  Pose2 ScanWorldPose(std::int64_t stamp_us, int region, const Pose2& in_region, const Pose2& online) const {
+    return front_end_.ScanWorldPose(stamp_us, region, in_region, online);
+  }
+  // The start heading refined with the gyro (core/front_end/start_heading.hpp).
+  const StartHeadingFit& start_heading() const { return front_end_.start_heading(); }
 
   // World-frame bounds of everything mapped so far.
   CellBox MapBounds() const {

@@ -54,6 +54,10 @@ Status FrontEnd::Init(const MapperConfig& config) {
   consecutive_rejections_ = consecutive_second_rejections_ = 0;
   restart_pending_ = bent_ = false;
   grid_turn_pending_ = true;
+  start_pending_ = true;
+  gyro_turn_ = false;
+  start_heading_.Reset();
+  start_region_ = -1;
   bent_kept_out_ = 0;
   last_stamp_us_ = -1;
   streak_us_ = 0;
@@ -128,6 +132,7 @@ Pose2 FrontEnd::Predict(std::int64_t stamp_us, std::int64_t dt_us) {
   const Pose2 constant_velocity = ConstantVelocity(dt_us);
   if (odometry_.empty()) {
     ++counters_.scans_without_odometry;
+    start_heading_.Abort();  // no gyro turn for this step
     return pose_ * constant_velocity;
   }
   const Pose2 odom = odometry_.PoseAt(stamp_us);
@@ -147,6 +152,12 @@ Pose2 FrontEnd::Predict(std::int64_t stamp_us, std::int64_t dt_us) {
     step.x = constant_velocity.x;
     step.y = constant_velocity.y;
   }
+  if (have_odom_ && gyro && have_gyro_yaw_) {
+    start_heading_.AddGyroTurn(step.theta);
+  } else {
+    start_heading_.Abort();
+  }
+  gyro_turn_ = gyro;
   have_gyro_yaw_ = gyro;
   last_gyro_yaw_ = yaw;
   const Pose2 predicted = have_odom_ ? pose_ * step : pose_;
@@ -189,9 +200,11 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   // Only the run's very first scan may turn the grid: any scan reported before it was in the old frame.
   const bool may_turn_grid = std::exchange(grid_turn_pending_, false);
   if (SkipScan(projected, predicted)) return Status::kNotEnoughData;
+  const bool start_scan = std::exchange(start_pending_, false);  // the run's first scan not skipped
   // 0. Lost (wheels lifted, a long rejection streak, an unknown start): the scan goes into no
   // map; it tracks locally and searches the maps (front_end_relocalise.cpp).
   if (LostNow()) {
+    start_heading_.Abort();
     pending_.active = false;  // a lost robot maps nothing: the waiting scan is dropped
     RelocaliseScan(beams, motion, since_last_us, &projected, predicted);
     wheel_check_.AddScan(pose(), Pose2::Identity(), stamp_us, false);
@@ -242,6 +255,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
     last_scan_region_ = anchor_region_ >= 0 ? anchor_region_ : regions_.current();
     if (last_scan_region_ >= 0) last_scan_in_region_ = Between(regions_[last_scan_region_].anchor, pose());
   }
+  FitStartHeading(stamp_us, start_scan, registered && !keep_out && consecutive_rejections_ == 0);
   // 5. Back end: at most one queued job.
   StepBackEnd();
   FinishScan(since_last_us);
@@ -419,6 +433,30 @@ void FrontEnd::TurnFrameFromWalls(Span<const Point2> hits, Pose2* previous, Pose
   pose_ = turn * pose_;
   *previous = turn * *previous;
   *predicted = turn * *predicted;
+}
+
+void FrontEnd::FitStartHeading(std::int64_t stamp_us, bool start_scan, bool accepted) {
+  const StartHeadingConfig& h = config_.front_end.start_heading;
+  if (start_scan) {
+    if (h.window_s > 0.0f && gyro_turn_ && last_scan_region_ >= 0) {
+      start_heading_.Begin(stamp_us, pose().theta);
+      start_region_ = last_scan_region_;
+      start_in_region_ = last_scan_in_region_;
+    }
+    return;
+  }
+  if (accepted) (void)start_heading_.AddScan(stamp_us, pose().theta, h);
+}
+
+Pose2 FrontEnd::ScanWorldPose(std::int64_t stamp_us, int region, const Pose2& in_region, const Pose2& online) const {
+  const Pose2 world = region >= 0 && region < regions_.size() ? regions_[region].anchor * in_region : online;
+  if (start_heading_.outcome() != StartHeadingFit::Outcome::kApplied || stamp_us > start_heading_.start_stamp_us() ||
+      start_region_ < 0 || start_region_ >= regions_.size()) {
+    return world;
+  }
+  // Turned about the start by the offset: the start lands where the later scans place it.
+  const Pose2 start = regions_[start_region_].anchor * start_in_region_;
+  return start * Pose2{0.0f, 0.0f, start_heading_.offset_rad()} * start.Inverse() * world;
 }
 
 bool FrontEnd::SkipScan(const ProjectedScan& projected, const Pose2& predicted) {

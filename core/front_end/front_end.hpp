@@ -23,6 +23,7 @@
 #include "core/front_end/region_set.hpp"
 #include "core/front_end/region_tracker.hpp"
 #include "core/front_end/scan_motion.hpp"
+#include "core/front_end/start_heading.hpp"
 #include "core/front_end/submap.hpp"
 #include "core/front_end/wheel_check.hpp"
 #include "core/geometry/scan.hpp"
@@ -104,6 +105,12 @@ class FrontEnd {
   // in that map's frame. Its world pose after later optimisations is the map's anchor times it.
   int last_scan_region() const { return last_scan_region_; }
   const Pose2& last_scan_in_region() const { return last_scan_in_region_; }
+  // The final world pose of a scan recorded after AddScan as (its stamp, last_scan_region(),
+  // last_scan_in_region(), pose()): its map's anchor now times its pose in the map; a scan in no
+  // map keeps its online pose. The start scan, and the scans before it, follow the start heading
+  // once the gyro has refined it (start_heading.hpp): the map's frame stays, the start moves.
+  Pose2 ScanWorldPose(std::int64_t stamp_us, int region, const Pose2& in_region, const Pose2& online) const;
+  const StartHeadingFit& start_heading() const { return start_heading_; }
 
   // Loading a saved map (core/persistence/map_reader.hpp; front_end_restore.cpp), after Init:
   // RestoreRegion appends the regional maps in their saved order (nullptr: pool full); after the
@@ -195,6 +202,10 @@ class FrontEnd {
   // An empty scan, or a sparse one while the submap is empty (FrontEndConfig::min_start_hits):
   // the pose is the prediction and the scan goes nowhere (counted). True when skipped.
   bool SkipScan(const ProjectedScan& projected, const Pose2& predicted);
+  // After a scan has gone into the maps: the run's start scan (its first not skipped) begins the
+  // start heading's fit when it went into a map with the gyro giving the heading; each accepted
+  // scan within the fit's window adds to it.
+  void FitStartHeading(std::int64_t stamp_us, bool start_scan, bool accepted);
   // The run's first scan, into a new map: turns the world frame about its origin, and the robot's
   // poses in it (pose_, `previous`, `predicted`), so that the scan's walls lie off the grid's axes
   // when they lie along them (FrontEndConfig::grid_turn_rad; recorded in fe_counters_).
@@ -324,6 +335,13 @@ class FrontEnd {
   int consecutive_second_rejections_ = 0;  // in a mature regional map (TrackRegions)
   bool restart_pending_ = false;  // a submap restart is due, waiting for a scan with enough returns
   bool grid_turn_pending_ = false;  // the next scan is the run's first: it may turn the grid
+  // The start heading's fit (FitStartHeading): pending until the run's first scan not skipped;
+  // that scan's map and pose in it; whether the last prediction's turn came from the gyro.
+  bool start_pending_ = false;
+  bool gyro_turn_ = false;
+  StartHeadingFit start_heading_;
+  int start_region_ = -1;
+  Pose2 start_in_region_;
   bool bent_ = false;             // the last scan's de-skew was doubtful (RegisterRedeskewed)
   std::uint8_t bent_kept_out_ = 0;  // bent scans kept out in a row
   static constexpr std::uint8_t kMaxBentKeptOut = 5;  // then one goes in: the submap must not go stale

@@ -13,6 +13,7 @@ void FrontEnd::RestoreStart(Point2 region_origin, const Pose2& start) {
   pose_ = Pose2::Identity();
   submap_pose_ = start;
   grid_turn_pending_ = false;  // a saved map's frame is kept
+  start_pending_ = false;      // and its start, wherever this session began
   last_world_ = start;
   if (regions_.size() == 0) return;  // nothing saved: the first scan starts a lattice as usual
   const FrontEndConfig& f = config_.front_end;

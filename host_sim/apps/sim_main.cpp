@@ -41,6 +41,7 @@ struct Options {
   double near_weight_m = -1.0;  // < 0: a vacuum lidar's (kVacuumNearWeightRangeM)
   double map_max_turn_dps = -1.0;  // < 0: the lidar model's (ApplyLidarModel)
   double smoothing_gap_beams = -1.0;  // < 0: the lidar model's (ApplyLidarModel)
+  double start_heading_window_s = -1.0;  // < 0: the configuration's
   std::string load_map;
   std::string save_map;
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
@@ -188,6 +189,11 @@ dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfi
   if (opt.near_weight_m >= 0.0) config.lidar.near_weight_range_m = static_cast<float>(opt.near_weight_m);
   if (opt.map_max_turn_dps >= 0.0) config.lidar.map_max_turn_rate_rad_s = static_cast<float>(opt.map_max_turn_dps * M_PI / 180.0);
   if (opt.smoothing_gap_beams >= 0.0) config.lidar.smoothing_max_gap_beams = static_cast<float>(opt.smoothing_gap_beams);
+  if (opt.start_heading_window_s >= 0.0) {
+    auto& h = config.front_end.start_heading;
+    h.window_s = static_cast<float>(opt.start_heading_window_s);
+    h.skip_s = std::fmin(h.skip_s, h.window_s);
+  }
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
   config.front_end.gyro_heading = opt.heading == "gyro";
@@ -400,6 +406,9 @@ void AddSensorOptions(CLI::App& app, Options& opt) {
   app.add_option("--smoothing-gap", opt.smoothing_gap_beams, "the widest angle, in beams, between two returns that the range-noise "
                  "smoothing takes as neighbours on one wall (LidarConfig::smoothing_max_gap_beams, default: ld06 1.5, xv11 3.5)")
       ->check(CLI::Range(1.0, 10.0));
+  app.add_option("--start-heading-window", opt.start_heading_window_s, "with the gyro giving the heading, refine the start's "
+                 "heading from the scans of this many seconds after it (StartHeadingConfig::window_s, default 30; 0: never)")
+      ->check(CLI::Range(0.0, 600.0));
   app.add_option("--map-max-turn", opt.map_max_turn_dps, "scans taken turning faster than this go into the submap but not the "
                  "regional maps (deg/s; LidarConfig::map_max_turn_rate_rad_s, default: ld06 60, xv11 0; 0: every scan)")
       ->check(CLI::Range(0.0, 5000.0));

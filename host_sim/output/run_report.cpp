@@ -184,4 +184,15 @@ nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, cons
   return metrics;
 }
 
+nlohmann::json StartHeadingMetrics(const dpcr::StartHeadingFit& fit) {
+  using Outcome = dpcr::StartHeadingFit::Outcome;
+  static constexpr const char* kNames[] = {"none", "applied", "small", "refused", "aborted"};
+  const Outcome o = fit.outcome();
+  const bool fitted = o == Outcome::kApplied || o == Outcome::kSmall || o == Outcome::kRefused;
+  return {{"outcome", kNames[static_cast<int>(o)]},
+          {"offset_deg", fitted ? nlohmann::json(fit.offset_rad() * 180.0 / M_PI) : nlohmann::json()},
+          {"gyro_bias_deg_s", fitted ? nlohmann::json(fit.bias_rad_s() * 180.0 / M_PI) : nlohmann::json()},
+          {"samples", fit.samples()}};
+}
+
 }  // namespace dpcr::output

@@ -14,6 +14,7 @@
 #include "host_sim/eval/accuracy.hpp"
 #include "host_sim/eval/anchor_errors.hpp"
 #include "host_sim/eval/trajectory.hpp"
+#include "core/front_end/start_heading.hpp"
 #include "core/mapper_types.hpp"
 
 namespace dpcr::output {
@@ -80,7 +81,8 @@ void AddTimedScan(MapperType& mapper, const typename MapperType::ScanType& scan,
 }
 
 // At the end of a run: each scan's pose becomes its map's final anchor times its pose in the map
-// (the globally consistent trajectory, as the maps are); scans in no map keep their online pose.
+// (the globally consistent trajectory, as the maps are); scans in no map keep their online pose;
+// the start and the scans before it follow the refined start heading (Mapper::ScanWorldPose).
 template <class MapperType>
 void FinalizeTrajectory(const MapperType& mapper, RunRecord* run) {
   run->final_anchors.clear();
@@ -92,8 +94,8 @@ void FinalizeTrajectory(const MapperType& mapper, RunRecord* run) {
     run->final_edges.push_back({e.from, e.to, static_cast<int>(e.kind), e.measurement});
   }
   for (std::size_t i = 0; i < run->estimate.size() && i < run->scan_region.size(); ++i) {
-    const int r = run->scan_region[i];
-    if (r >= 0 && r < mapper.region_count()) run->estimate[i].pose = mapper.region_anchor(r) * run->scan_in_region[i];
+    auto& e = run->estimate[i];
+    e.pose = mapper.ScanWorldPose(e.stamp_us, run->scan_region[i], run->scan_in_region[i], e.pose);
   }
 }
 
@@ -101,6 +103,10 @@ void FinalizeTrajectory(const MapperType& mapper, RunRecord* run) {
 // content. Throws std::runtime_error on I/O errors.
 nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, const RunRecord& run,
                                nlohmann::json mapper_metrics);
+
+// The start heading's fit (metrics.json "start_heading"): its outcome (none, applied, small,
+// refused, aborted), the offset and gyro bias fitted, the scans it took.
+nlohmann::json StartHeadingMetrics(const dpcr::StartHeadingFit& fit);
 
 // How much of the run the mapper knew where it was (metrics.json "tracking"): scans and seconds
 // lost (status kLost after the scan) and in rejection streaks, the longest streak, the share of
@@ -185,6 +191,7 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                     {"first_wall_direction_deg", std::isfinite(f.first_wall_direction_rad) ? nlohmann::json(f.first_wall_direction_rad * 180.0 / M_PI) : nlohmann::json()},
                     {"grid_turn_deg", f.grid_turn_rad * 180.0 / M_PI},
                     {"search_recoveries", f.search.search_recoveries}, {"search_grid_builds", f.search.search_grid_builds}};
+  j["start_heading"] = StartHeadingMetrics(mapper.start_heading());
   return j;
 }
 

@@ -171,6 +171,14 @@ std::vector<BadField> BadFields() {
       // the turn would leave walls that needed it near the axes.
       FLOAT_FIELD(front_end.grid_turn_rad, (std::vector<double>{-1.0, kNaN, kInf, 1.0, 0.2})),
       FLOAT_FIELD(front_end.grid_turn_band_rad, (std::vector<double>{-1.0, kNaN, kInf, 0.2})),
+      // The start heading's fit: a window past ten minutes, a skip past the window, a floor over the
+      // ceiling, a ceiling past 20 degrees or a bias past 1 rad/s is no fit of a start's noise.
+      FLOAT_FIELD(front_end.start_heading.window_s, (std::vector<double>{-1.0, kNaN, kInf, 1000.0, 0.5})),
+      FLOAT_FIELD(front_end.start_heading.skip_s, (std::vector<double>{-1.0, kNaN, kInf, 31.0})),
+      INT_FIELD(front_end.start_heading.min_samples, (std::vector<double>{-1.0, 0.0, 1.0, 1e5})),
+      FLOAT_FIELD(front_end.start_heading.min_offset_rad, (std::vector<double>{-1.0, kNaN, kInf, 0.1})),
+      FLOAT_FIELD(front_end.start_heading.max_offset_rad, (std::vector<double>{-1.0, kNaN, kInf, 1.0, 0.001})),
+      FLOAT_FIELD(front_end.start_heading.max_bias_rad_s, (std::vector<double>{-1.0, kNaN, kInf, 2.0})),
       // The coarse pose search and the weak-match rebuild, unchecked until fuzz/fuzz_mapper_config.cpp
       // found e.g. kernel_radius_cells = INT_MIN, sigma_m = NaN or 1e-30, or angle_window_rad = NaN
       // overflowing int casts in rotation_search.cpp after a rejected registration.
