@@ -78,29 +78,16 @@ TEST_CASE("An offset under the fits own error is left alone", "[start_heading]")
 
 TEST_CASE("Too few scans an implausible gyro bias or offset refuse the fit", "[start_heading]") {
   StartHeadingConfig config;
+  Run run;
   SECTION("too few scans") {
-    StartHeadingFit fit;
-    Run run;
     run.scan_rate_hz = 1;
     config.min_samples = 40;  // 30 at 1 Hz
-    (void)Feed(&fit, run, config);
-    CHECK(fit.outcome() == Outcome::kRefused);
   }
-  SECTION("a gyro off by 2 degrees a second") {
-    StartHeadingFit fit;
-    Run run;
-    run.gyro_bias_rad_s = 0.035f;
-    (void)Feed(&fit, run, config);
-    CHECK(fit.outcome() == Outcome::kRefused);
-    CHECK(fit.bias_rad_s() == Approx(run.gyro_bias_rad_s).margin(5e-5));
-  }
-  SECTION("an offset of 5 degrees") {
-    StartHeadingFit fit;
-    Run run;
-    run.offset_rad = 0.087f;
-    (void)Feed(&fit, run, config);
-    CHECK(fit.outcome() == Outcome::kRefused);
-  }
+  SECTION("a gyro off by 2 degrees a second") { run.gyro_bias_rad_s = 0.035f; }
+  SECTION("an offset of 5 degrees") { run.offset_rad = 0.087f; }
+  StartHeadingFit fit;
+  (void)Feed(&fit, run, config);
+  CHECK(fit.outcome() == Outcome::kRefused);
 }
 
 TEST_CASE("A window the gyro or the tracking broke applies nothing", "[start_heading]") {
