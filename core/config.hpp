@@ -129,8 +129,9 @@ constexpr ReferenceConfig ReferenceWithThreshold(std::int16_t obstacle_threshold
   return c;
 }
 
-// The start heading refined with the gyro (core/front_end/start_heading.hpp): only when the gyro
-// gives the heading (FrontEndConfig::gyro_heading, or a gyro without wheels), not for a loaded map.
+// The start heading refined with the gyro (core/front_end/start_heading.hpp): applied when a gyro
+// gave the turns (FrontEndConfig::gyro_heading, or a gyro without wheels) or wheel ticks that the
+// wheel check found to carry only a heading (an IMU's); not for a loaded map.
 struct StartHeadingConfig {
   float window_s = 30.0f;  // the fit's window from the start scan; 0 = never refined
   float skip_s = 1.0f;     // the start's first turn, registered to the first scan's walls alone

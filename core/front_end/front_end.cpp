@@ -55,7 +55,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   restart_pending_ = bent_ = false;
   grid_turn_pending_ = true;
   start_pending_ = true;
-  gyro_turn_ = false;
+  step_turn_measured_ = step_turn_from_wheels_ = start_wheel_turns_ = false;
   start_heading_.Reset();
   start_region_ = -1;
   bent_kept_out_ = 0;
@@ -130,9 +130,9 @@ void FrontEnd::FadeConstantVelocity() {
 
 Pose2 FrontEnd::Predict(std::int64_t stamp_us, std::int64_t dt_us) {
   const Pose2 constant_velocity = ConstantVelocity(dt_us);
+  step_turn_measured_ = false;
   if (odometry_.empty()) {
     ++counters_.scans_without_odometry;
-    start_heading_.Abort();  // no gyro turn for this step
     return pose_ * constant_velocity;
   }
   const Pose2 odom = odometry_.PoseAt(stamp_us);
@@ -152,12 +152,9 @@ Pose2 FrontEnd::Predict(std::int64_t stamp_us, std::int64_t dt_us) {
     step.x = constant_velocity.x;
     step.y = constant_velocity.y;
   }
-  if (have_odom_ && gyro && have_gyro_yaw_) {
-    start_heading_.AddGyroTurn(step.theta);
-  } else {
-    start_heading_.Abort();
-  }
-  gyro_turn_ = gyro;
+  step_turn_ = step.theta;
+  step_turn_from_wheels_ = !(gyro && have_gyro_yaw_) && wheels;
+  step_turn_measured_ = have_odom_ && (step_turn_from_wheels_ || (gyro && have_gyro_yaw_));
   have_gyro_yaw_ = gyro;
   last_gyro_yaw_ = yaw;
   const Pose2 predicted = have_odom_ ? pose_ * step : pose_;
@@ -284,6 +281,7 @@ void FrontEnd::FlushPendingScan(Span<const Beam> beams, std::int64_t stamp_us, c
                                 std::int64_t since_last_us, const ProjectedScan& current, bool keep_out, bool bent,
                                 bool first, bool restarted) {
   const FrontEndConfig& f = config_.front_end;
+  start_heading_.Abort();  // no heading sensor: nothing to fit the start with
   bool flushed = false, into_maps = false;
   Pose2 at;
   ProjectedScan projected;
@@ -438,14 +436,22 @@ void FrontEnd::TurnFrameFromWalls(Span<const Point2> hits, Pose2* previous, Pose
 void FrontEnd::FitStartHeading(std::int64_t stamp_us, bool start_scan, bool accepted) {
   const StartHeadingConfig& h = config_.front_end.start_heading;
   if (start_scan) {
-    if (h.window_s > 0.0f && gyro_turn_ && last_scan_region_ >= 0) {
+    if (h.window_s > 0.0f && last_scan_region_ >= 0) {
       start_heading_.Begin(stamp_us, pose().theta);
       start_region_ = last_scan_region_;
       start_in_region_ = last_scan_in_region_;
     }
     return;
   }
-  if (accepted) (void)start_heading_.AddScan(stamp_us, pose().theta, h);
+  FeedStartHeading(accepted);
+}
+
+void FrontEnd::FeedStartHeading(bool accepted) {
+  if (step_turn_measured_ && step_turn_from_wheels_) start_wheel_turns_ = true;
+  // Wheels whose translation the check set aside are an IMU's heading made into ticks: a gyro's.
+  const bool wheels = start_wheel_turns_ && !wheel_check_.translation_ignored();
+  const StartHeadingFit::Step step{last_stamp_us_, pose().theta, step_turn_, step_turn_measured_, accepted};
+  (void)start_heading_.AddScan(step, wheels, config_.front_end.start_heading);
 }
 
 Pose2 FrontEnd::ScanWorldPose(std::int64_t stamp_us, int region, const Pose2& in_region, const Pose2& online) const {
@@ -469,6 +475,7 @@ bool FrontEnd::SkipScan(const ProjectedScan& projected, const Pose2& predicted) 
   ++counters_.scans_rejected;
   ++(empty ? counters_.scans_empty : counters_.scans_too_sparse);
   pose_ = predicted;
+  FeedStartHeading(false);  // its turn, as predicted
   return true;
 }
 

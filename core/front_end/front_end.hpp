@@ -203,9 +203,10 @@ class FrontEnd {
   // the pose is the prediction and the scan goes nowhere (counted). True when skipped.
   bool SkipScan(const ProjectedScan& projected, const Pose2& predicted);
   // After a scan has gone into the maps: the run's start scan (its first not skipped) begins the
-  // start heading's fit when it went into a map with the gyro giving the heading; each accepted
-  // scan within the fit's window adds to it.
+  // start heading's fit when it went into a map; every later scan feeds it (FeedStartHeading), a
+  // skipped one too (SkipScan).
   void FitStartHeading(std::int64_t stamp_us, bool start_scan, bool accepted);
+  void FeedStartHeading(bool accepted);
   // The run's first scan, into a new map: turns the world frame about its origin, and the robot's
   // poses in it (pose_, `previous`, `predicted`), so that the scan's walls lie off the grid's axes
   // when they lie along them (FrontEndConfig::grid_turn_rad; recorded in fe_counters_).
@@ -336,9 +337,13 @@ class FrontEnd {
   bool restart_pending_ = false;  // a submap restart is due, waiting for a scan with enough returns
   bool grid_turn_pending_ = false;  // the next scan is the run's first: it may turn the grid
   // The start heading's fit (FitStartHeading): pending until the run's first scan not skipped;
-  // that scan's map and pose in it; whether the last prediction's turn came from the gyro.
+  // the last prediction's turn, whether a sensor measured it and whether the wheels did; whether
+  // any turn since the start came from the wheels; the start scan's map and pose in it.
   bool start_pending_ = false;
-  bool gyro_turn_ = false;
+  float step_turn_ = 0.0f;
+  bool step_turn_measured_ = false;
+  bool step_turn_from_wheels_ = false;
+  bool start_wheel_turns_ = false;
   StartHeadingFit start_heading_;
   int start_region_ = -1;
   Pose2 start_in_region_;

@@ -406,7 +406,7 @@ void AddSensorOptions(CLI::App& app, Options& opt) {
   app.add_option("--smoothing-gap", opt.smoothing_gap_beams, "the widest angle, in beams, between two returns that the range-noise "
                  "smoothing takes as neighbours on one wall (LidarConfig::smoothing_max_gap_beams, default: ld06 1.5, xv11 3.5)")
       ->check(CLI::Range(1.0, 10.0));
-  app.add_option("--start-heading-window", opt.start_heading_window_s, "with the gyro giving the heading, refine the start's "
+  app.add_option("--start-heading-window", opt.start_heading_window_s, "with a gyro's turns or heading-only ticks, refine the start's "
                  "heading from the scans of this many seconds after it (StartHeadingConfig::window_s, default 30; 0: never)")
       ->check(CLI::Range(0.0, 600.0));
   app.add_option("--map-max-turn", opt.map_max_turn_dps, "scans taken turning faster than this go into the submap but not the "

@@ -186,9 +186,9 @@ nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, cons
 
 nlohmann::json StartHeadingMetrics(const dpcr::StartHeadingFit& fit) {
   using Outcome = dpcr::StartHeadingFit::Outcome;
-  static constexpr const char* kNames[] = {"none", "applied", "small", "refused", "aborted"};
+  static constexpr const char* kNames[] = {"none", "applied", "small", "refused", "aborted", "wheels"};
   const Outcome o = fit.outcome();
-  const bool fitted = o == Outcome::kApplied || o == Outcome::kSmall || o == Outcome::kRefused;
+  const bool fitted = o == Outcome::kApplied || o == Outcome::kSmall || o == Outcome::kRefused || o == Outcome::kWheels;
   return {{"outcome", kNames[static_cast<int>(o)]},
           {"offset_deg", fitted ? nlohmann::json(fit.offset_rad() * 180.0 / M_PI) : nlohmann::json()},
           {"gyro_bias_deg_s", fitted ? nlohmann::json(fit.bias_rad_s() * 180.0 / M_PI) : nlohmann::json()},

@@ -105,7 +105,7 @@ nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, cons
                                nlohmann::json mapper_metrics);
 
 // The start heading's fit (metrics.json "start_heading"): its outcome (none, applied, small,
-// refused, aborted), the offset and gyro bias fitted, the scans it took.
+// refused, aborted, wheels), the offset and the heading sensor's bias fitted, the scans it took.
 nlohmann::json StartHeadingMetrics(const dpcr::StartHeadingFit& fit);
 
 // How much of the run the mapper knew where it was (metrics.json "tracking"): scans and seconds
