@@ -20,6 +20,7 @@
 #include "host_sim/drivers/device_files.hpp"
 #include "host_sim/output/map_file_io.hpp"
 #include "host_sim/output/run_report.hpp"
+#include "host_sim/sim/heading_only_ticks.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
 
@@ -89,21 +90,14 @@ struct SpinTally {
 // its IMU's yaw into ticks, as real XV-11 recordings were converted): no translation, no gyro frame.
 struct RobotOdometry {
   const Options& opt;
-  float imu_yaw = 0.0f;
-  std::int64_t last_us = -1;
+  dpcr::sim::HeadingOnlyTicks heading_ticks;
   bool Apply(dpcr::OdometrySample* sample) {
     if (opt.odometry == "none") return false;
     if (opt.odometry == "gyro") {
       sample->pose = dpcr::Pose2::Identity();
       sample->has_wheels = false;
     }
-    if (opt.odometry == "heading-ticks") {
-      // The rate is the mean over the interval that ends at the sample (core/front_end/odometry_buffer.hpp).
-      if (last_us >= 0) imu_yaw = dpcr::NormalizeAngle(imu_yaw + sample->gyro_yaw_rate * static_cast<float>(sample->stamp_us - last_us) * 1e-6f);
-      last_us = sample->stamp_us;
-      sample->pose = dpcr::Pose2{0.0f, 0.0f, imu_yaw};
-      sample->has_gyro = false;
-    }
+    if (opt.odometry == "heading-ticks") heading_ticks.Apply(sample);
     return true;
   }
 };
@@ -277,7 +271,7 @@ int Run(const Options& opt) {
   const double total_us = opt.minutes * 60e6;
   std::vector<dpcr::apps::Recovery> recoveries;
   std::vector<bool> lost;  // per scan: the status after it was lost
-  RobotOdometry robot_odometry{opt};
+  RobotOdometry robot_odometry{opt, {}};
   while (sim.Step(&event)) {
     if (event.type == dpcr::sim::SimEventType::kOdometry) {
       if (!robot_odometry.Apply(&event.odometry)) continue;

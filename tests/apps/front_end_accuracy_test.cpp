@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "core/mapper.hpp"
+#include "host_sim/sim/heading_only_ticks.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
 #include "host_sim/eval/accuracy.hpp"
@@ -29,16 +30,10 @@ dpcr::eval::AccuracyResult MapApartment(bool registration, double minutes, bool 
   dpcr::sim::Simulation sim(dpcr::sim::LoadBuiltinWorld("apartment"), sim_config);
   dpcr::sim::SimEvent event;
   dpcr::eval::Trajectory estimate, truth;
-  float yaw = 0.0f;
-  std::int64_t last_us = -1;
+  dpcr::sim::HeadingOnlyTicks ticks;
   while (sim.Step(&event)) {
     if (event.type == dpcr::sim::SimEventType::kOdometry) {
-      if (heading_only_ticks) {
-        if (last_us >= 0) yaw += event.odometry.gyro_yaw_rate * static_cast<float>(event.odometry.stamp_us - last_us) * 1e-6f;
-        last_us = event.odometry.stamp_us;
-        event.odometry.pose = dpcr::Pose2{0.0f, 0.0f, dpcr::NormalizeAngle(yaw)};
-        event.odometry.has_gyro = false;
-      }
+      if (heading_only_ticks) ticks.Apply(&event.odometry);
       mapper->AddOdometry(event.odometry);
       continue;
     }

@@ -10,6 +10,7 @@
 
 #include "core/mapper.hpp"
 #include "hal/device_options.hpp"
+#include "host_sim/sim/heading_only_ticks.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
 
@@ -55,16 +56,10 @@ StartRun RunApartment(std::uint64_t seed, Robot robot, float window_s) {
   };
   std::vector<Record> records;
   dpcr::sim::SimEvent event;
-  float yaw = 0.0f;
-  std::int64_t last_us = -1;
+  dpcr::sim::HeadingOnlyTicks ticks;
   while (sim.Step(&event)) {
     if (event.type == dpcr::sim::SimEventType::kOdometry) {
-      if (robot == Robot::kXv11HeadingTicks) {
-        if (last_us >= 0) yaw += event.odometry.gyro_yaw_rate * static_cast<float>(event.odometry.stamp_us - last_us) * 1e-6f;
-        last_us = event.odometry.stamp_us;
-        event.odometry.pose = dpcr::Pose2{0.0f, 0.0f, dpcr::NormalizeAngle(yaw)};
-        event.odometry.has_gyro = false;
-      }
+      if (robot == Robot::kXv11HeadingTicks) ticks.Apply(&event.odometry);
       mapper->AddOdometry(event.odometry);
       continue;
     }
