@@ -129,7 +129,9 @@ bool FrontEndOk(const FrontEndConfig& f, const GridConfig& g) {
   const bool turn = In(f.grid_turn_rad, 0.0f, 0.7f) && In(f.grid_turn_band_rad, 0.0f, 0.35f) &&
                     (f.grid_turn_rad == 0.0f || f.grid_turn_band_rad <= 0.5f * f.grid_turn_rad);
   const StartHeadingConfig& h = f.start_heading;
-  const bool start = In(h.window_s, 0.0f, 600.0f) && In(h.skip_s, 0.0f, h.window_s) && In(h.min_samples, 2, 10000) &&
+  // The skip within the window, unless the fit is off (window 0).
+  const bool start = In(h.window_s, 0.0f, 600.0f) && In(h.skip_s, 0.0f, 600.0f) &&
+                     (h.window_s == 0.0f || h.skip_s <= h.window_s) && In(h.min_samples, 2, 10000) &&
                      In(h.min_offset_rad, 0.0f, h.max_offset_rad) && In(h.max_offset_rad, 0.0f, 0.35f) &&
                      In(h.max_bias_rad_s, 0.0f, 1.0f);
   return submap && periods && regions && registration && turn && start;

@@ -183,11 +183,7 @@ dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfi
   if (opt.near_weight_m >= 0.0) config.lidar.near_weight_range_m = static_cast<float>(opt.near_weight_m);
   if (opt.map_max_turn_dps >= 0.0) config.lidar.map_max_turn_rate_rad_s = static_cast<float>(opt.map_max_turn_dps * M_PI / 180.0);
   if (opt.smoothing_gap_beams >= 0.0) config.lidar.smoothing_max_gap_beams = static_cast<float>(opt.smoothing_gap_beams);
-  if (opt.start_heading_window_s >= 0.0) {
-    auto& h = config.front_end.start_heading;
-    h.window_s = static_cast<float>(opt.start_heading_window_s);
-    h.skip_s = std::fmin(h.skip_s, h.window_s);
-  }
+  if (opt.start_heading_window_s >= 0.0) config.front_end.start_heading.window_s = static_cast<float>(opt.start_heading_window_s);
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
   config.front_end.gyro_heading = opt.heading == "gyro";

@@ -32,19 +32,18 @@ struct StartRun {
 enum class Robot { kLd06Wheels, kXv11Gyro, kXv11HeadingTicks };
 
 StartRun RunApartment(std::uint64_t seed, Robot robot, float window_s) {
-  const bool xv11_gyro = robot != Robot::kLd06Wheels;
+  const bool xv11 = robot != Robot::kLd06Wheels;
   dpcr::sim::SimConfig sim_config;
   sim_config.seed = seed;
   sim_config.duration_min = 1.0;
-  if (xv11_gyro) sim_config.lidar = dpcr::sim::Xv11LidarConfig();
+  if (xv11) sim_config.lidar = dpcr::sim::Xv11LidarConfig();
   dpcr::MapperConfig config;
   config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
   const float range_noise_m = config.lidar.range_noise_m;
-  dpcr::ApplyLidarModel(xv11_gyro ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06, &config.lidar);
+  dpcr::ApplyLidarModel(xv11 ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06, &config.lidar);
   config.lidar.range_noise_m = range_noise_m;  // as dpcr-sim: the simulated noise
   config.front_end.gyro_heading = robot == Robot::kXv11Gyro;
   config.front_end.start_heading.window_s = window_s;
-  config.front_end.start_heading.skip_s = std::fmin(config.front_end.start_heading.skip_s, window_s);
   auto mapper = std::make_unique<MapperType>();
   REQUIRE(mapper->Init(config) == dpcr::Status::kOk);
   dpcr::sim::Simulation sim(dpcr::sim::LoadBuiltinWorld("apartment"), sim_config);
