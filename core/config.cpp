@@ -105,6 +105,7 @@ bool FrontEndOk(const FrontEndConfig& f, const GridConfig& g) {
                        In(f.lost_after_rejections, 1, kMaxCount) && In(f.lidar_only_lost_after_second_rejections, 0, kMaxCount) &&
                        In(f.submap_restart_after_rejections, 1, kMaxCount) &&
                        In(f.min_start_hits, 0, kMaxCount) && In(f.redeskew_min_m, 0.0f, 1.0f) &&
+                       In(f.sparse_scan_share, 0.0f, 1.0f) && In(f.sparse_residual_noise_factor, 0.0f, 10.0f) &&
                        In(f.redeskew_min_rad, 0.0f, kPi) && In(f.odometry_doubt_m, 0.0f, 10.0f) &&
                        In(f.odometry_doubt_rad, 0.0f, kPi) &&
                        In(f.uncertain_turn_rad, 0.0f, kPi);
@@ -173,7 +174,8 @@ bool LocalisationOk(const LocalisationConfig& c, const BackEndConfig& b) {
          In(c.window_margin_m, 0.0f, kMaxDistanceM) && In(c.cloud_points, 10, b.search_points) &&
          AboveUpTo(c.max_second_ratio, 0.0f, 1.0f) && In(c.min_inlier_ratio, 0.0f, 1.0f) &&
          In(c.near_window_m, 0.0f, kMaxDistanceM) && In(c.near_window_mps, 0.0f, 10.0f) &&
-         In(c.clear_min_score, 0.0f, 1.0f) && In(c.clear_max_ratio, 0.0f, 1.0f);
+         In(c.clear_min_score, 0.0f, 1.0f) && In(c.clear_max_ratio, 0.0f, 1.0f) &&
+         In(c.heading_window_rad, 0.0f, kPi) && In(c.heading_window_rad_s, 0.0f, 1.0f);
 }
 
 // What the profile's storage holds.

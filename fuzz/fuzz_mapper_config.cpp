@@ -71,7 +71,7 @@ void ForEachField(M& m, dpcr::MapperConfig& c) {
       m(f.region_width_m), m(f.region_hysteresis_m), m(f.region_mature_scans), m(f.reference_inner_margin_m),
       m(f.region_slow_learning_scans), m(f.region_slow_learning_rate),
       m(f.enable_registration), m(f.lost_after_rejections), m(f.lidar_only_lost_after_second_rejections), m(f.prior_info_xy), m(f.prior_info_theta), m(f.odometry_doubt_m), m(f.odometry_doubt_rad),
-      m(f.second_registration_max_points), m(f.min_start_hits), m(f.redeskew_min_m), m(f.redeskew_min_rad), m(f.lidar_only_fixed_lag);
+      m(f.second_registration_max_points), m(f.min_start_hits), m(f.sparse_scan_share), m(f.sparse_residual_noise_factor), m(f.redeskew_min_m), m(f.redeskew_min_rad), m(f.lidar_only_fixed_lag);
   Plicp(m, f.first_registration);
   m(f.search_on_rejection), m(f.search_turn_rad);
   m(f.search.resolution_m), m(f.search.sigma_m), m(f.search.kernel_radius_cells), m(f.search.angle_window_rad),
@@ -100,7 +100,8 @@ void ForEachField(M& m, dpcr::MapperConfig& c) {
   dpcr::LocalisationConfig& loc = c.localisation;
   m(loc.relocalise), m(loc.unknown_start), m(loc.localise_only), m(loc.coarsen), m(loc.coarse_angle_step_rad),
       m(loc.angles_per_step), m(loc.window_margin_m), m(loc.cloud_points), m(loc.max_second_ratio), m(loc.min_inlier_ratio),
-      m(loc.near_window_m), m(loc.near_window_mps), m(loc.clear_min_score), m(loc.clear_max_ratio);
+      m(loc.near_window_m), m(loc.near_window_mps), m(loc.clear_min_score), m(loc.clear_max_ratio),
+      m(loc.heading_window_rad), m(loc.heading_window_rad_s);
 }
 
 }  // namespace

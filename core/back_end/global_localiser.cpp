@@ -15,11 +15,17 @@ bool Separated(const Pose2& a, const Pose2& b, const CorrelativeSearchConfig& se
 // (about pi each at 0.07 rad: two per map) and its wrong headings can compete with its right one.
 constexpr int kSliceAngles = 45;
 
-int SlicesPerMap(const LocalisationConfig& c) {
+}  // namespace
+
+int GlobalLocaliser::SlicesPerMap(const LocalisationConfig& c) const {
+  if (heading_window_ > 0.0f) return 1;
   return static_cast<int>(std::ceil(2.0f * kPi / (static_cast<float>(kSliceAngles) * c.coarse_angle_step_rad)));
 }
 
-}  // namespace
+void GlobalLocaliser::LimitHeadings(float world_heading, float half_window_rad) {
+  heading_ = world_heading;
+  heading_window_ = half_window_rad > 0.0f && half_window_rad < kPi ? half_window_rad : 0.0f;
+}
 
 GlobalLocaliser::Candidate GlobalLocaliser::Load(const BackEndStorage& s, int i) {
   const Point2* p = s.cloud.data() + s.cloud.size() - kCandidateEntries + 3 * static_cast<std::size_t>(i);
@@ -81,6 +87,7 @@ void GlobalLocaliser::Begin(const BackEndStorage& s, Span<const Point2> hits, co
   grid_map_ = -1;
   local_tiles_ = 0;
   local_map_ = -1;
+  heading_window_ = 0.0f;
   cursor_ = slice_ = candidates_ = 0;
   phase_ = kCoarse;
 }
@@ -133,9 +140,13 @@ CorrelativeSearchConfig GlobalLocaliser::CoarseSearch(const LocalisationConfig& 
 void GlobalLocaliser::SearchSlice(const BackEndStorage& s, Span<const RegionalMap> maps, int map, Point2 at,
                                   float base_heading, float window_m, bool border_rejects, const LocalisationConfig& config,
                                   const BackEndConfig& back_end) {
-  // The slice's headings around its centre, its translations within window_m of `at`.
-  const float half_slice = 0.5f * static_cast<float>(kSliceAngles) * config.coarse_angle_step_rad;
-  const float centre = base_heading - kPi + (2.0f * static_cast<float>(slice_) + 1.0f) * half_slice;
+  // The slice's headings around its centre, its translations within window_m of `at`; under
+  // LimitHeadings the one slice is the window about the robot's heading in the map's frame.
+  const float full_half_slice = 0.5f * static_cast<float>(kSliceAngles) * config.coarse_angle_step_rad;
+  const bool limited = heading_window_ > 0.0f;
+  const float half_slice = limited && heading_window_ < full_half_slice ? heading_window_ : full_half_slice;
+  const float centre = limited ? heading_ - maps[static_cast<std::size_t>(map)].anchor.theta
+                               : base_heading - kPi + (2.0f * static_cast<float>(slice_) + 1.0f) * half_slice;
   const CorrelativeSearchConfig search = CoarseSearch(config, back_end);
   const CorrelativeSearchResult r = CorrelativeSearch(*s.match_grid, CoarseCloud(s), Pose2{at.x, at.y, NormalizeAngle(centre)},
                                                       window_m, half_slice, search, s.rotated);
@@ -209,7 +220,8 @@ void GlobalLocaliser::CoarseStep(const BackEndStorage& s, Span<const RegionalMap
     EnsureGrid(s, map, static_cast<int>(cursor_), config.coarsen, threshold);
     // Translations over the map's region square and margin (the anchor is the square's centre).
     SearchSlice(s, maps, static_cast<int>(cursor_), Point2{0.0f, 0.0f}, 0.0f, window_m, false, config, back_end);
-    done += kSliceAngles;
+    // A slice limited to a window of headings costs its share.
+    done += heading_window_ > 0.0f ? 1 + static_cast<int>(2.0f * heading_window_ / config.coarse_angle_step_rad) : kSliceAngles;
   }
 }
 

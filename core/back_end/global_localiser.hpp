@@ -63,6 +63,10 @@ class GlobalLocaliser {
   // (LocalisationConfig::near_window_m: a robot without a heading sensor lost nearby).
   void BeginLocal(const BackEndStorage& s, Span<const Point2> hits, const LocalisationConfig& config, int map,
                   const Pose2& centre, float window_m);
+  // Only headings within `half_window_rad` of `world_heading` (the robot's, in the world frame, at
+  // the frozen scan) are searched in this round; 0 or pi and more: every heading. Called after
+  // Begin / BeginLocal (which search every heading).
+  void LimitHeadings(float world_heading, float half_window_rad);
   // Whether the current (or last) round is a local one.
   bool local() const { return local_tiles_ > 0; }
   void Cancel() { phase_ = kIdle; }
@@ -101,6 +105,8 @@ class GlobalLocaliser {
   static CorrelativeSearchConfig CoarseSearch(const LocalisationConfig& config, const BackEndConfig& back_end);
   void SearchSlice(const BackEndStorage& s, Span<const RegionalMap> maps, int map, Point2 at, float base_heading, float window_m,
                    bool border_rejects, const LocalisationConfig& config, const BackEndConfig& back_end);
+  // Slices of headings a map is searched in: one under LimitHeadings.
+  int SlicesPerMap(const LocalisationConfig& config) const;
   void EndCoarse();
   void LocalCoarseStep(const BackEndStorage& s, Span<const RegionalMap> maps, float region_width_m, std::int16_t threshold,
                        const LocalisationConfig& config, const BackEndConfig& back_end);
@@ -128,6 +134,8 @@ class GlobalLocaliser {
   Phase phase_ = kIdle;
   std::int16_t local_map_ = -1;
   std::uint8_t local_tiles_ = 0;  // a local round's squares per side (0: a global round)
+  float heading_ = 0.0f;          // LimitHeadings: the world heading searched around
+  float heading_window_ = 0.0f;   // and the half window (0: every heading)
   bool held_ = false;
 };
 

@@ -52,6 +52,14 @@ struct LocalisationConfig {
   // held instead. clear_min_score 0 and clear_max_ratio 1: every verified fix is taken.
   float clear_min_score = 0.85f;
   float clear_max_ratio = 0.75f;
+  // A robot lost on the floor (not carried) whose heading a sensor measures (wheels, a gyro, an
+  // IMU's heading-only ticks) still knows which way it faces: only headings within
+  // heading_window_rad + heading_window_rad_s x the time since the streak began of its believed
+  // heading are searched (a gyro's bias, a streak's mis-turns). A room's 180-degree twin is then no
+  // candidate: XV-11 with 40 % of its readings, heading-only ticks, apartment seed 2: a fix 180
+  // degrees off, 6.4 m from the truth (docs/relocalisation.md). 0: every heading.
+  float heading_window_rad = 0.35f;
+  float heading_window_rad_s = 0.005f;
 };
 
 }  // namespace dpcr

@@ -5,14 +5,22 @@
 
 namespace dpcr {
 
-PlicpConfig FirstRegistrationBase(const MapperConfig& config) {
+bool SparseScan(const FrontEndConfig& config, std::size_t hits, std::size_t beams) {
+  return static_cast<float>(hits) < config.sparse_scan_share * static_cast<float>(beams);
+}
+
+PlicpConfig FirstRegistrationBase(const MapperConfig& config, bool sparse) {
   PlicpConfig c = config.front_end.first_registration;
   c.near_weight_range_m = config.lidar.near_weight_range_m;
+  if (sparse) {
+    c.max_mean_residual_m =
+        std::max(c.max_mean_residual_m, config.front_end.sparse_residual_noise_factor * config.lidar.range_noise_m);
+  }
   return c;
 }
 
-PlicpConfig FirstRegistrationPlicp(const MapperConfig& config, bool wheels) {
-  PlicpConfig c = FirstRegistrationBase(config);
+PlicpConfig FirstRegistrationPlicp(const MapperConfig& config, bool wheels, bool sparse) {
+  PlicpConfig c = FirstRegistrationBase(config, sparse);
   if (wheels) c.trim_floor_m = std::min(std::max(c.trim_floor_m, 2.0f * config.lidar.range_noise_m), c.gate_m);
   return c;
 }

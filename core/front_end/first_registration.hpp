@@ -21,16 +21,21 @@ struct FirstRegistrationStats {
   std::uint32_t search_grid_builds = 0;
 };
 
+// Whether a scan with `hits` returns of `beams` readings is sparse (FrontEndConfig::sparse_scan_share).
+bool SparseScan(const FrontEndConfig& config, std::size_t hits, std::size_t beams);
+
 // config.front_end.first_registration with the lidar's weighting of near returns
-// (LidarConfig::near_weight_range_m): what every first registration of a scan starts from.
-PlicpConfig FirstRegistrationBase(const MapperConfig& config);
+// (LidarConfig::near_weight_range_m), and for a sparse scan (SparseScan) the mean residual bound
+// raised to FrontEndConfig::sparse_residual_noise_factor x LidarConfig::range_noise_m: what every
+// first registration of a scan starts from.
+PlicpConfig FirstRegistrationBase(const MapperConfig& config, bool sparse);
 
 // The first registration's PLICP settings (FirstRegistrationBase) for a scan whose
 // motion the wheels measured or not: with them the scan is de-skewed by measurement, and
 // residuals of the lidar's own noise are not outliers: the trim floor is raised to twice
 // LidarConfig::range_noise_m (up to the gate). Without them a residual also holds the de-skew's
 // guess, which the adaptive trim must cut (the lidar alone, XV-11: 0.073 -> 0.088 m with the floor).
-PlicpConfig FirstRegistrationPlicp(const MapperConfig& config, bool wheels);
+PlicpConfig FirstRegistrationPlicp(const MapperConfig& config, bool wheels, bool sparse);
 
 // `grid_version` / `reference_version`: the score grid is rebuilt from `ref` only when a search
 // needs it and the reference changed since (versions differ). `prior_xy_scale` and

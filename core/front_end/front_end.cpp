@@ -299,7 +299,7 @@ void FrontEnd::FlushPendingScan(Span<const Beam> beams, std::int64_t stamp_us, c
     // Registered again from where it was placed (not after a rejection: that pose is a guess).
     bool registered = false;
     if (!pending_.rejected && !pending_.first) {
-      const PlicpConfig plicp = FirstRegistrationBase(config_);
+      const PlicpConfig plicp = FirstRegistrationBase(config_, SparseScan(f, projected.hits, pending_.beams));
       const RegistrationResult r =
           RegisterFirst(*s_.submap_reference, nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
                         Span<const Point2>(s_.hits.data(), projected.hits),
@@ -570,7 +570,8 @@ void FrontEnd::RefitSubmapLines() {
 void FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, ProjectedScan* projected,
                             const Pose2& predicted) {
   const FrontEndConfig& f = config_.front_end;
-  const PlicpConfig plicp = FirstRegistrationPlicp(config_, motion.wheels());
+  sparse_scan_ = SparseScan(f, projected->hits, beams.size());
+  const PlicpConfig plicp = FirstRegistrationPlicp(config_, motion.wheels(), sparse_scan_);
   RegistrationResult r =
       // In a rejection streak the search runs on every other scan (each search that did not help
       // is followed by one PLICP-only attempt): the streak's cost stays bounded.
@@ -623,7 +624,7 @@ RegistrationResult FrontEnd::RegisterRedeskewed(Span<const Beam> beams, const Sc
   bent_ = bend_m >= 2.0f * f.redeskew_min_m || bend_rad >= 2.0f * f.redeskew_min_rad;
   if (bend_m < f.redeskew_min_m && bend_rad < f.redeskew_min_rad) return first;
   ++fe_counters_.redeskews;
-  const PlicpConfig plicp = FirstRegistrationBase(config_);
+  const PlicpConfig plicp = FirstRegistrationBase(config_, sparse_scan_);
   const ScanMotion again(odometry_, f.gyro_heading, found, motion.stamp_us());
   *projected = ProjectScan(beams, config_.lidar, again, s_.hits, s_.free_ends);
   const RegistrationResult second =
@@ -646,7 +647,7 @@ RegistrationResult FrontEnd::RegisterFromConstantVelocity(std::size_t hits, std:
   const bool doubt_rad = f.odometry_doubt_rad > 0.0f && std::fabs(apart.theta) > f.odometry_doubt_rad;
   if (!doubt_m && !doubt_rad) return rejected;
   ++fe_counters_.odometry_doubted;
-  const PlicpConfig plicp = FirstRegistrationBase(config_);
+  const PlicpConfig plicp = FirstRegistrationBase(config_, sparse_scan_);
   const RegistrationResult again =
       RegisterFirst(*s_.submap_reference, nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
                     Span<const Point2>(s_.hits.data(), hits), pose_, guess, f, s_.correspondences, &fe_counters_.search, 1.0f, 1.0f,

@@ -279,6 +279,9 @@ class FrontEnd {
   // Without a heading sensor (LocalisationConfig::near_window_m): the half-width of the local
   // round's window around the believed pose, 0 when the round is global.
   float NearWindow() const;
+  // The half window of headings a lost robot's search covers about its believed heading
+  // (LocalisationConfig::heading_window_rad; 0: every heading).
+  float HeadingWindow() const;
   // Without a heading sensor (LocalisationConfig::clear_min_score): whether a verified fix is
   // taken now, clear or agreeing with the held one; else it is held.
   bool TakeFix(const GlobalFix& fix);
@@ -328,6 +331,7 @@ class FrontEnd {
   static constexpr std::uint32_t kMinScansBetweenEarlyBuilds = 2;
   std::uint32_t search_grid_version_ = 0;  // submap_line_builds when the search grid was built
   bool weak_match_ = false;  // the last first registration matched weakly (see FrontEndConfig)
+  bool sparse_scan_ = false;  // the scan being registered is sparse (FrontEndConfig::sparse_scan_share)
   bool have_odom_ = false;
   bool have_gyro_yaw_ = false;  // last_gyro_yaw_ holds the gyro yaw at the last prediction
   bool have_scan_ = false;

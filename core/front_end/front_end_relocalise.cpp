@@ -104,6 +104,7 @@ void FrontEnd::StepRelocalisation(std::size_t hits) {
     } else {
       localiser_.Begin(s_.back_end, Span<const Point2>(s_.hits.data(), hits), config_.localisation);
     }
+    localiser_.LimitHeadings(pose().theta, HeadingWindow());
     frozen_in_submap_ = pose_;
   }
   GlobalFix fix;
@@ -140,6 +141,13 @@ float FrontEnd::NearWindow() const {
   const float window = c.near_window_m + c.near_window_mps * (lost_s > 0.0f ? lost_s : 0.0f);
   // Past the map's square and margin the local round would be the global one's work on one map.
   return window < 0.5f * config_.front_end.region_width_m + c.window_margin_m ? window : 0.0f;
+}
+
+float FrontEnd::HeadingWindow() const {
+  const LocalisationConfig& c = config_.localisation;
+  if (!may_be_near_ || !HeadingMeasured() || !(c.heading_window_rad > 0.0f)) return 0.0f;
+  const float lost_s = static_cast<float>(last_stamp_us_ - lost_since_us_) * 1e-6f;
+  return c.heading_window_rad + c.heading_window_rad_s * (lost_s > 0.0f ? lost_s : 0.0f);
 }
 
 bool FrontEnd::TakeFix(const GlobalFix& fix) {

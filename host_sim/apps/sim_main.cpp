@@ -61,6 +61,7 @@ struct Options {
   std::string odometry = "wheels";  // wheels (+ gyro), gyro (no wheel encoders), heading-ticks, none
   int spins = 0;                    // an in-place spin every this many waypoints (0: none)
   double lidar_min_hz = -1.0;       // the lowest revolution rate (-1: the lidar model's)
+  double lidar_valid = -1.0;        // the share of returns that come (-1: the lidar model's)
   double wheel_clock_ppm = 35.0;    // --emit-device: the wheel board's clock drift (DeviceFilesConfig)
   bool ideal_bus = false;           // --emit-device: no latency, jitter or drift on the CAN bus
   std::vector<int> unsettle_after;  // GridConfig::unsettle_occupied_after, unsettle_free_after (empty: the defaults)
@@ -142,7 +143,8 @@ nlohmann::json InputMetrics(const Options& opt, const dpcr::sim::Simulation& sim
   return {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed}, {"heading", opt.heading}, {"lidar", opt.lidar}, {"odometry", opt.odometry}, {"spins", opt.spins},
           {"plan", opt.fixed_plan ? "fixed" : "varied by the seed"}, {"start_pose_in_world", {start.x, start.y, start.theta}},
           {"slip_events", sim.slip_events()}, {"people", opt.people},
-          {"lidar_noise", {sim_config.lidar.noise_base_m, sim_config.lidar.noise_fraction}}, {"ideal_wheels", opt.ideal_wheels},
+          {"lidar_noise", {sim_config.lidar.noise_base_m, sim_config.lidar.noise_fraction}},
+          {"lidar_valid", 1.0 - sim_config.lidar.invalid_probability}, {"lidar_min_hz", sim_config.lidar.rate_min_hz}, {"ideal_wheels", opt.ideal_wheels},
           {"doors", {{"moving", sim.doors().size()}, {"scheduled_changes", sim.doors().scheduled_changes()}}}, {"kidnaps", opt.kidnaps}, {"coverage_tours", sim.tours_completed()}};
 }
 
@@ -155,6 +157,7 @@ dpcr::sim::SimConfig SimulationConfig(const Options& opt) {
   c.start_heading_rad = opt.start_heading_rad;
   if (opt.lidar == "xv11") c.lidar = dpcr::sim::Xv11LidarConfig();
   if (opt.lidar_min_hz >= 0.0) c.lidar.rate_min_hz = opt.lidar_min_hz;
+  if (opt.lidar_valid >= 0.0) c.lidar.invalid_probability = 1.0 - opt.lidar_valid;
   c.motion.spin_every_waypoints = opt.spins;
   c.kidnaps.count = opt.kidnaps;
   c.kidnaps.from_min = opt.kidnap_from_min;
@@ -379,6 +382,8 @@ void AddSensorOptions(CLI::App& app, Options& opt) {
       ->check(CLI::NonNegativeNumber)->capture_default_str();
   app.add_option("--lidar-min-hz", opt.lidar_min_hz, "the lowest revolution rate of a wandering lidar motor (default: the model's; "
                  "xv11 4.5 Hz, ld06 none)")->check(CLI::NonNegativeNumber);
+  app.add_option("--lidar-valid", opt.lidar_valid, "the share of a revolution's readings that come back valid, before junk "
+                 "(default: the model's; xv11 0.7, ld06 1 less the materials' dropouts)")->check(CLI::Range(0.05, 1.0));
   app.add_option("--unsettle-after", opt.unsettle_after, "settled regional cells learn again after this many scans in a row "
                  "contradict them: occupied,free (0: never; GridConfig::unsettle_occupied_after, unsettle_free_after)")
       ->expected(2)->delimiter(',')->check(CLI::Range(0, 255));

@@ -165,6 +165,8 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(front_end.odometry_doubt_rad, (std::vector<double>{-1.0, kNaN, kInf, 4.0})),
       INT_FIELD(front_end.second_registration_max_points, kCount),  // 0 divided by zero in SubmapTarget
       INT_FIELD(front_end.min_start_hits, (std::vector<double>{-1.0, -2e9, 1e9})),
+      FLOAT_FIELD(front_end.sparse_scan_share, (std::vector<double>{-0.1, 1.1, 1e9})),
+      FLOAT_FIELD(front_end.sparse_residual_noise_factor, (std::vector<double>{-0.1, 10.5, 1e9})),
       FLOAT_FIELD(front_end.redeskew_min_m, kNonNegative),
       FLOAT_FIELD(front_end.redeskew_min_rad, kNonNegative),
       // A turn past 40 degrees would put the walls near the grid's diagonals; a band wider than half
@@ -242,6 +244,8 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(localisation.near_window_mps, kNonNegative),
       FLOAT_FIELD(localisation.clear_min_score, kRatio),
       FLOAT_FIELD(localisation.clear_max_ratio, kRatio),
+      FLOAT_FIELD(localisation.heading_window_rad, (std::vector<double>{-0.1, 3.2, 1e9})),
+      FLOAT_FIELD(localisation.heading_window_rad_s, (std::vector<double>{-0.1, 1.1, 1e9})),
   };
   AddPlicp(&t, "front_end.first_registration.", [](dpcr::MapperConfig& c) -> dpcr::PlicpConfig& { return c.front_end.first_registration; });
   AddPlicp(&t, "front_end.second_registration.", [](dpcr::MapperConfig& c) -> dpcr::PlicpConfig& { return c.front_end.second_registration; });

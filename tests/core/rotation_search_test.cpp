@@ -142,14 +142,34 @@ TEST_CASE("The first registration searches only when PLICP rejects, and then rec
 TEST_CASE("The first registration trims above twice the lidar's range noise, only when the wheels measured the motion") {
   dpcr::MapperConfig config;
   const float configured = config.front_end.first_registration.trim_floor_m;  // 3 cm
-  CHECK(dpcr::FirstRegistrationPlicp(config, true).trim_floor_m == configured);  // noise not known
+  CHECK(dpcr::FirstRegistrationPlicp(config, true, false).trim_floor_m == configured);  // noise not known
   config.lidar.range_noise_m = 0.025f;  // an LD06 at 3 m
-  CHECK(dpcr::FirstRegistrationPlicp(config, true).trim_floor_m == Approx(0.05f));
-  CHECK(dpcr::FirstRegistrationPlicp(config, false).trim_floor_m == configured);  // a guessed de-skew: trimmed as before
-  CHECK(dpcr::FirstRegistrationPlicp(config, true).huber_m == config.front_end.first_registration.huber_m);
+  CHECK(dpcr::FirstRegistrationPlicp(config, true, false).trim_floor_m == Approx(0.05f));
+  CHECK(dpcr::FirstRegistrationPlicp(config, false, false).trim_floor_m == configured);  // a guessed de-skew: trimmed as before
+  CHECK(dpcr::FirstRegistrationPlicp(config, true, false).huber_m == config.front_end.first_registration.huber_m);
   config.lidar.range_noise_m = 0.01f;  // a SICK: under the floor
-  CHECK(dpcr::FirstRegistrationPlicp(config, true).trim_floor_m == configured);
+  CHECK(dpcr::FirstRegistrationPlicp(config, true, false).trim_floor_m == configured);
   config.lidar.range_noise_m = 0.4f;  // never beyond the gate
-  CHECK(dpcr::FirstRegistrationPlicp(config, true).trim_floor_m == config.front_end.first_registration.gate_m);
+  CHECK(dpcr::FirstRegistrationPlicp(config, true, false).trim_floor_m == config.front_end.first_registration.gate_m);
+  REQUIRE(dpcr::Validate(config) == dpcr::Status::kOk);
+}
+
+TEST_CASE("A sparse scan is allowed a mean residual of twice the lidar range noise in its first registration") {
+  dpcr::MapperConfig config;
+  const float bound = config.front_end.first_registration.max_mean_residual_m;  // 4 cm
+  // 150 of 360 readings (42 %) is sparse at the default share (45 %); 170 (47 %) is not.
+  CHECK(dpcr::SparseScan(config.front_end, 150, 360));
+  CHECK_FALSE(dpcr::SparseScan(config.front_end, 170, 360));
+  CHECK_FALSE(dpcr::SparseScan(config.front_end, 0, 0));
+  CHECK(dpcr::FirstRegistrationBase(config, true).max_mean_residual_m == bound);  // noise not known
+  config.lidar.range_noise_m = 0.04f;  // an XV-11 at 3 m
+  CHECK(dpcr::FirstRegistrationBase(config, true).max_mean_residual_m == Approx(0.08f));
+  CHECK(dpcr::FirstRegistrationPlicp(config, false, true).max_mean_residual_m == Approx(0.08f));
+  CHECK(dpcr::FirstRegistrationBase(config, false).max_mean_residual_m == bound);
+  config.lidar.range_noise_m = 0.01f;  // a SICK: twice its noise is under the bound, which stays
+  CHECK(dpcr::FirstRegistrationBase(config, true).max_mean_residual_m == bound);
+  config.lidar.range_noise_m = 0.04f;
+  config.front_end.sparse_scan_share = 0.0f;  // off
+  CHECK_FALSE(dpcr::SparseScan(config.front_end, 10, 360));
   REQUIRE(dpcr::Validate(config) == dpcr::Status::kOk);
 }
