@@ -18,7 +18,9 @@ constexpr int kSliceAngles = 45;
 }  // namespace
 
 int GlobalLocaliser::SlicesPerMap(const LocalisationConfig& c) const {
-  if (heading_window_ > 0.0f) return 1;
+  // Under LimitHeadings a global round's map is searched in kTilesPerMap squares instead (each
+  // gives its own candidate, so that a look-alike at the same heading competes with the best).
+  if (heading_window_ > 0.0f) return local_tiles_ > 0 ? 1 : kTilesPerMap;
   return static_cast<int>(std::ceil(2.0f * kPi / (static_cast<float>(kSliceAngles) * c.coarse_angle_step_rad)));
 }
 
@@ -147,6 +149,13 @@ void GlobalLocaliser::SearchSlice(const BackEndStorage& s, Span<const RegionalMa
   const float half_slice = limited && heading_window_ < full_half_slice ? heading_window_ : full_half_slice;
   const float centre = limited ? heading_ - maps[static_cast<std::size_t>(map)].anchor.theta
                                : base_heading - kPi + (2.0f * static_cast<float>(slice_) + 1.0f) * half_slice;
+  if (limited && local_tiles_ == 0) {
+    // Square slice_ of the 2 x 2 the map's square is cut into, overlapping by a match cell (a
+    // peak on their border is one candidate: Offer keeps the better of two close poses).
+    const float half = 0.5f * window_m;
+    at = Point2{at.x + (slice_ % 2 == 0 ? -half : half), at.y + (slice_ / 2 == 0 ? -half : half)};
+    window_m = half + s.match_grid->resolution_m();
+  }
   const CorrelativeSearchConfig search = CoarseSearch(config, back_end);
   const CorrelativeSearchResult r = CorrelativeSearch(*s.match_grid, CoarseCloud(s), Pose2{at.x, at.y, NormalizeAngle(centre)},
                                                       window_m, half_slice, search, s.rotated);

@@ -49,6 +49,8 @@ class GlobalLocaliser {
   // A local round's window is searched in squares of at most this half-width (each gives its own
   // candidates, so that a look-alike inside the window competes with the best pose).
   static constexpr float kLocalTileHalfM = 0.5f;
+  // Squares a map's square is cut into in a global round limited to a window of headings.
+  static constexpr int kTilesPerMap = 4;
   // Points of the frozen cloud the coarse search scores (an even thinning of it): its cost is
   // proportional, and the fine search and PLICP use the whole cloud.
   static constexpr std::size_t kCoarsePoints = 32;
