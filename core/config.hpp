@@ -216,11 +216,12 @@ struct FrontEndConfig {
   // A sparse scan (returns from fewer than sparse_scan_share of its revolution's beams: an XV-11
   // that loses half its readings or more) has few neighbours for the range-noise smoothing, so its
   // returns keep their noise; against a young submap (a reference of a scan or two as noisy) their
-  // mean residual passes the first registration's bound (PlicpConfig::max_mean_residual_m, 4 cm)
+  // mean residual exceeds the first registration's bound (PlicpConfig::max_mean_residual_m, 4 cm)
   // while the match is right. Its first registrations accept a mean residual up to
   // sparse_residual_noise_factor x the lidar's range noise (LidarConfig::range_noise_m; a lidar
   // that declares none is unaffected). XV-11 with 40 % of its readings, heading-only ticks,
-  // apartment seeds 1-10: LocErr_ave 3.0 -> 0.53 m, lost 1092 -> 248 s; with 70 % (the model's)
+  // apartment seeds 1-10, with LocalisationConfig::heading_window_rad: LocErr_ave 3.0 -> 0.53 m,
+  // lost 1092 -> 248 s; with 70 % (the model's)
   // unchanged (docs/back-end.md, "Sparse scans"). 0: off.
   float sparse_scan_share = 0.45f;
   float sparse_residual_noise_factor = 2.0f;

@@ -107,7 +107,8 @@ class GlobalLocaliser {
   static CorrelativeSearchConfig CoarseSearch(const LocalisationConfig& config, const BackEndConfig& back_end);
   void SearchSlice(const BackEndStorage& s, Span<const RegionalMap> maps, int map, Point2 at, float base_heading, float window_m,
                    bool border_rejects, const LocalisationConfig& config, const BackEndConfig& back_end);
-  // Slices of headings a map is searched in: one under LimitHeadings.
+  // Searches a map takes: slices of headings; under LimitHeadings one (a local round's square)
+  // or kTilesPerMap squares of the map (a global round).
   int SlicesPerMap(const LocalisationConfig& config) const;
   void EndCoarse();
   void LocalCoarseStep(const BackEndStorage& s, Span<const RegionalMap> maps, float region_width_m, std::int16_t threshold,
