@@ -24,6 +24,11 @@ int GlobalLocaliser::SlicesPerMap(const LocalisationConfig& c) const {
   return static_cast<int>(std::ceil(2.0f * kPi / (static_cast<float>(kSliceAngles) * c.coarse_angle_step_rad)));
 }
 
+float GlobalLocaliser::SliceHalfWidth(const LocalisationConfig& c) const {
+  const float full = 0.5f * static_cast<float>(kSliceAngles) * c.coarse_angle_step_rad;
+  return heading_window_ > 0.0f && heading_window_ < full ? heading_window_ : full;
+}
+
 void GlobalLocaliser::LimitHeadings(float world_heading, float half_window_rad) {
   heading_ = world_heading;
   heading_window_ = half_window_rad > 0.0f && half_window_rad < kPi ? half_window_rad : 0.0f;
@@ -144,9 +149,8 @@ void GlobalLocaliser::SearchSlice(const BackEndStorage& s, Span<const RegionalMa
                                   const BackEndConfig& back_end) {
   // The slice's headings around its centre, its translations within window_m of `at`; under
   // LimitHeadings the one slice is the window about the robot's heading in the map's frame.
-  const float full_half_slice = 0.5f * static_cast<float>(kSliceAngles) * config.coarse_angle_step_rad;
   const bool limited = heading_window_ > 0.0f;
-  const float half_slice = limited && heading_window_ < full_half_slice ? heading_window_ : full_half_slice;
+  const float half_slice = SliceHalfWidth(config);
   const float centre = limited ? heading_ - maps[static_cast<std::size_t>(map)].anchor.theta
                                : base_heading - kPi + (2.0f * static_cast<float>(slice_) + 1.0f) * half_slice;
   if (limited && local_tiles_ == 0) {

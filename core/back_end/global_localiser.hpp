@@ -110,6 +110,8 @@ class GlobalLocaliser {
   // Searches a map takes: slices of headings; under LimitHeadings one (a local round's square)
   // or kTilesPerMap squares of the map (a global round).
   int SlicesPerMap(const LocalisationConfig& config) const;
+  // A slice's half width of headings: kSliceAngles steps, or the LimitHeadings window when narrower.
+  float SliceHalfWidth(const LocalisationConfig& config) const;
   void EndCoarse();
   void LocalCoarseStep(const BackEndStorage& s, Span<const RegionalMap> maps, float region_width_m, std::int16_t threshold,
                        const LocalisationConfig& config, const BackEndConfig& back_end);

@@ -570,8 +570,8 @@ void FrontEnd::RefitSubmapLines() {
 void FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, ProjectedScan* projected,
                             const Pose2& predicted) {
   const FrontEndConfig& f = config_.front_end;
-  sparse_scan_ = SparseScan(f, projected->hits, beams.size());
-  const PlicpConfig plicp = FirstRegistrationPlicp(config_, motion.wheels(), sparse_scan_);
+  const bool sparse = SparseScan(f, projected->hits, beams.size());
+  const PlicpConfig plicp = FirstRegistrationPlicp(config_, motion.wheels(), sparse);
   RegistrationResult r =
       // In a rejection streak the search runs on every other scan (each search that did not help
       // is followed by one PLICP-only attempt): the streak's cost stays bounded.
@@ -579,8 +579,8 @@ void FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, st
                     Span<const Point2>(s_.hits.data(), projected->hits), pose_, predicted, f, s_.correspondences, &fe_counters_.search,
                     PriorXyScale(motion), PriorThetaScale(motion), &plicp);
   bent_ = false;
-  if (!motion.wheels() && dt_us > 0 && !beams.empty()) r = RegisterRedeskewed(beams, motion, dt_us, projected, r);
-  if (r.verdict != Status::kOk && motion.wheels() && !motion.gyro()) r = RegisterFromConstantVelocity(projected->hits, dt_us, predicted, r);
+  if (!motion.wheels() && dt_us > 0 && !beams.empty()) r = RegisterRedeskewed(beams, motion, dt_us, sparse, projected, r);
+  if (r.verdict != Status::kOk && motion.wheels() && !motion.gyro()) r = RegisterFromConstantVelocity(projected->hits, sparse, dt_us, predicted, r);
   if (r.verdict == Status::kOk && ImplausibleWithoutWheels(r.pose, predicted, motion, dt_us)) r.verdict = Status::kRejected;
   ++fe_counters_.first_registrations;
   weak_match_ = r.verdict != Status::kOk || r.inlier_ratio < f.weak_match_inlier_ratio;
@@ -607,7 +607,7 @@ bool FrontEnd::ImplausibleWithoutWheels(const Pose2& registered, const Pose2& pr
   return motion.gyro() && dt_us > 0 && step_m > kMaxSpeedWithoutWheelsMps * static_cast<float>(dt_us) * 1e-6f;
 }
 
-RegistrationResult FrontEnd::RegisterRedeskewed(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us,
+RegistrationResult FrontEnd::RegisterRedeskewed(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, bool sparse,
                                                 ProjectedScan* projected, const RegistrationResult& first) {
   const FrontEndConfig& f = config_.front_end;
   // The motion the registration found, per second, against the one the de-skew assumed; the
@@ -624,7 +624,7 @@ RegistrationResult FrontEnd::RegisterRedeskewed(Span<const Beam> beams, const Sc
   bent_ = bend_m >= 2.0f * f.redeskew_min_m || bend_rad >= 2.0f * f.redeskew_min_rad;
   if (bend_m < f.redeskew_min_m && bend_rad < f.redeskew_min_rad) return first;
   ++fe_counters_.redeskews;
-  const PlicpConfig plicp = FirstRegistrationBase(config_, sparse_scan_);
+  const PlicpConfig plicp = FirstRegistrationBase(config_, sparse);
   const ScanMotion again(odometry_, f.gyro_heading, found, motion.stamp_us());
   *projected = ProjectScan(beams, config_.lidar, again, s_.hits, s_.free_ends);
   const RegistrationResult second =
@@ -638,7 +638,7 @@ RegistrationResult FrontEnd::RegisterRedeskewed(Span<const Beam> beams, const Sc
   return first;
 }
 
-RegistrationResult FrontEnd::RegisterFromConstantVelocity(std::size_t hits, std::int64_t dt_us, const Pose2& predicted,
+RegistrationResult FrontEnd::RegisterFromConstantVelocity(std::size_t hits, bool sparse, std::int64_t dt_us, const Pose2& predicted,
                                                           const RegistrationResult& rejected) {
   const FrontEndConfig& f = config_.front_end;
   const Pose2 guess = pose_ * ConstantVelocity(dt_us);
@@ -647,7 +647,7 @@ RegistrationResult FrontEnd::RegisterFromConstantVelocity(std::size_t hits, std:
   const bool doubt_rad = f.odometry_doubt_rad > 0.0f && std::fabs(apart.theta) > f.odometry_doubt_rad;
   if (!doubt_m && !doubt_rad) return rejected;
   ++fe_counters_.odometry_doubted;
-  const PlicpConfig plicp = FirstRegistrationBase(config_, sparse_scan_);
+  const PlicpConfig plicp = FirstRegistrationBase(config_, sparse);
   const RegistrationResult again =
       RegisterFirst(*s_.submap_reference, nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
                     Span<const Point2>(s_.hits.data(), hits), pose_, guess, f, s_.correspondences, &fe_counters_.search, 1.0f, 1.0f,

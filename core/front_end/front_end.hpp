@@ -180,12 +180,13 @@ class FrontEnd {
   // velocity's when they differ by more than FrontEndConfig::odometry_doubt_*: the answer if
   // accepted, else `rejected`. (The scan was projected with the wheels' motion: logged odometry
   // carries no beam times, and a device's wheels that glitch between two revolutions bend neither.)
-  RegistrationResult RegisterFromConstantVelocity(std::size_t hits, std::int64_t dt_us, const Pose2& predicted,
+  RegistrationResult RegisterFromConstantVelocity(std::size_t hits, bool sparse, std::int64_t dt_us, const Pose2& predicted,
                                                   const RegistrationResult& rejected);
   // A rejected registration of a bent scan accepted for its pose when only the residual bound
   // failed, up to twice it (counted bent_tracked); `from`: where the registration started.
   RegistrationResult TrackBent(RegistrationResult r, const Pose2& from);
-  RegistrationResult RegisterRedeskewed(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us,
+  // `sparse`: the scan is (SparseScan), as in the registrations after it.
+  RegistrationResult RegisterRedeskewed(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, bool sparse,
                                         ProjectedScan* projected, const RegistrationResult& first);
   DPCR_STAGE void BuildRegionReference(const int (&maps)[2], int n);
   DPCR_STAGE RegistrationResult RegisterSubmap(RegionalMap& r);
@@ -279,6 +280,8 @@ class FrontEnd {
   // Without a heading sensor (LocalisationConfig::near_window_m): the half-width of the local
   // round's window around the believed pose, 0 when the round is global.
   float NearWindow() const;
+  // Seconds since the streak that lost the robot began (0 or more).
+  float LostSeconds() const;
   // The half window of headings a lost robot's search covers about its believed heading
   // (LocalisationConfig::heading_window_rad; 0: every heading).
   float HeadingWindow() const;
@@ -331,7 +334,6 @@ class FrontEnd {
   static constexpr std::uint32_t kMinScansBetweenEarlyBuilds = 2;
   std::uint32_t search_grid_version_ = 0;  // submap_line_builds when the search grid was built
   bool weak_match_ = false;  // the last first registration matched weakly (see FrontEndConfig)
-  bool sparse_scan_ = false;  // the scan being registered is sparse (FrontEndConfig::sparse_scan_share)
   bool have_odom_ = false;
   bool have_gyro_yaw_ = false;  // last_gyro_yaw_ holds the gyro yaw at the last prediction
   bool have_scan_ = false;

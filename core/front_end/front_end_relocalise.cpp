@@ -134,11 +134,15 @@ void FrontEnd::StepRelocalisation(std::size_t hits) {
   }
 }
 
+float FrontEnd::LostSeconds() const {
+  const float lost_s = static_cast<float>(last_stamp_us_ - lost_since_us_) * 1e-6f;
+  return lost_s > 0.0f ? lost_s : 0.0f;
+}
+
 float FrontEnd::NearWindow() const {
   const LocalisationConfig& c = config_.localisation;
   if (!may_be_near_ || near_failed_ || HeadingMeasured() || !(c.near_window_m > 0.0f) || regions_.current() < 0) return 0.0f;
-  const float lost_s = static_cast<float>(last_stamp_us_ - lost_since_us_) * 1e-6f;
-  const float window = c.near_window_m + c.near_window_mps * (lost_s > 0.0f ? lost_s : 0.0f);
+  const float window = c.near_window_m + c.near_window_mps * LostSeconds();
   // Past the map's square and margin the local round would be the global one's work on one map.
   return window < 0.5f * config_.front_end.region_width_m + c.window_margin_m ? window : 0.0f;
 }
@@ -146,8 +150,7 @@ float FrontEnd::NearWindow() const {
 float FrontEnd::HeadingWindow() const {
   const LocalisationConfig& c = config_.localisation;
   if (!may_be_near_ || !HeadingMeasured() || !(c.heading_window_rad > 0.0f)) return 0.0f;
-  const float lost_s = static_cast<float>(last_stamp_us_ - lost_since_us_) * 1e-6f;
-  return c.heading_window_rad + c.heading_window_rad_s * (lost_s > 0.0f ? lost_s : 0.0f);
+  return c.heading_window_rad + c.heading_window_rad_s * LostSeconds();
 }
 
 bool FrontEnd::TakeFix(const GlobalFix& fix) {
