@@ -37,6 +37,7 @@ struct FirmwareConfig {
   float max_range_m = DeviceOptions{}.max_range_m;  // the device options (hal/device_options.hpp)
   float laser_offset_m = 0.0f;
   bool gyro_heading = false;               // the prediction's heading from the CAN gyro (FrontEndConfig)
+  bool heading_from_model = true;          // gyro_heading not named: the lidar model's (ModelGyroHeading)
   std::string map_dir = ".";               // loads map.dpcr from there and saves it there
   int autosave_s = 60;                     // 0: only on exit
   int lidar_timeout_ms = 2000;             // no packet for this long: reported, exit 2

@@ -132,8 +132,9 @@ bool LoadFirmwareConfigFile(const std::string& path, FirmwareConfig* c, std::str
   r.Float("ticks_per_rev", &c->wheels.ticks_per_rev);
   std::string text;
   if (r.String("heading", &text)) {
-    if (text != "wheels" && text != "gyro") r.Fail("heading", "\"" + text + "\" is not wheels or gyro");
+    if (text != "model" && text != "wheels" && text != "gyro") r.Fail("heading", "\"" + text + "\" is not model, wheels or gyro");
     c->gyro_heading = text == "gyro";
+    c->heading_from_model = text == "model";
   }
   if (r.String("profile", &text) && text != "vacuum") {
     r.Fail("profile", "\"" + text + "\": this firmware is built for the vacuum profile");

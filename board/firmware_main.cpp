@@ -17,7 +17,7 @@ void Usage() {
                "                     [--map-dir DIR] [--autosave S] [--lidar-timeout-ms MS] [--wheel-timeout-ms MS]\n"
                "                     [--status-period S] [--angle-sign 1|-1] [--wheel-radius M] [--track-width M]\n"
                "                     --ticks-per-rev N (or ticks_per_rev in --config: required)\n"
-               "                     [--max-range M] [--laser-offset M] [--heading wheels|gyro]\n"
+               "                     [--max-range M] [--laser-offset M] [--heading model|wheels|gyro]\n"
                "                     [--can-fd FD]   (an open fd carrying struct can_frame, for tests)\n"
                "                     [--lidar-timing arrival|device] (LD06: stamp packets by their own clock)\n"
                "                     [--trajectory FILE] (TUM, written at exit) [--record DIR] (received streams)\n"
@@ -75,11 +75,12 @@ bool ApplyChoice(const std::string& a, const char* v, dpcr::board::FirmwareConfi
     }
     c->lidar_timing = std::strcmp(v, "device") == 0 ? dpcr::LidarTiming::kDeviceClock : dpcr::LidarTiming::kArrival;
   } else if (a == "--heading") {
-    if (std::strcmp(v, "wheels") != 0 && std::strcmp(v, "gyro") != 0) {
-      std::fprintf(stderr, "dpcr-firmware: error: unknown heading '%s' (wheels, gyro)\n", v);
+    if (std::strcmp(v, "model") != 0 && std::strcmp(v, "wheels") != 0 && std::strcmp(v, "gyro") != 0) {
+      std::fprintf(stderr, "dpcr-firmware: error: unknown heading '%s' (model, wheels, gyro)\n", v);
       return false;
     }
     c->gyro_heading = std::strcmp(v, "gyro") == 0;
+    c->heading_from_model = std::strcmp(v, "model") == 0;
   } else if (a == "--angle-sign") {
     if (std::strcmp(v, "1") != 0 && std::strcmp(v, "-1") != 0) {
       std::fprintf(stderr, "dpcr-firmware: error: --angle-sign: '%s' (1 or -1)\n", v);

@@ -48,7 +48,7 @@ struct Options {
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
   std::string scan_times;
   bool write_regions = false;
-  std::string heading = "wheels";  // FrontEndConfig::gyro_heading
+  std::string heading = "model";  // FrontEndConfig::gyro_heading (model: ModelGyroHeading)
   float wheel_radius_m = 0.0f;
   float track_width_m = 0.0f;
   float ticks_per_rev = 0.0f;
@@ -272,7 +272,8 @@ int ReplayDevice(const Options& opt) {
   dpcr::ApplyLidarModel(lidar.kind, &config.lidar);
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
-  config.front_end.gyro_heading = opt.heading == "gyro";
+  // --heading: named, or the lidar model's (hal/device_options.hpp).
+  config.front_end.gyro_heading = opt.heading == "gyro" || (opt.heading == "model" && dpcr::ModelGyroHeading(lidar.kind));
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
   ApplyLocalisationOptions(opt, &config);
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));
@@ -293,7 +294,7 @@ int ReplayDevice(const Options& opt) {
                        {"lidar_smoothing_max_gap_beams", config.lidar.smoothing_max_gap_beams},
                        {"lidar_near_weight_range_m", config.lidar.near_weight_range_m},
                        {"lidar_map_max_turn_rate_dps", config.lidar.map_max_turn_rate_rad_s * 180.0 / M_PI},
-                       {"heading", opt.heading}};
+                       {"heading", config.front_end.gyro_heading ? "gyro" : "wheels"}};
   metrics["input"] = {{"uart", opt.uart}, {"candump", opt.candump}, {"lidar", lidar_name},
                       {"packets", c.lidar.packets}, {"bad_packets", c.lidar.bad_packets}, {"resyncs", c.lidar.resyncs},
                       {"discarded_bytes", c.lidar.discarded_bytes}, {"revolutions", c.lidar.revolutions},
@@ -355,8 +356,9 @@ int main(int argc, char** argv) {
   app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");
   app.add_flag("--write-regions", opt.write_regions,
                "also write regions.tsv (each scan's map and pose in it) and graph.tsv (final anchors and edges)");
-  app.add_option("--heading", opt.heading, "--uart: the prediction's heading increment: wheels, or the integrated gyro frames (0x121)")
-      ->check(CLI::IsMember({"wheels", "gyro"}))->capture_default_str();
+  app.add_option("--heading", opt.heading, "--uart: the prediction's heading increment: wheels, or the integrated gyro frames (0x121); "
+                 "model: the gyro for an xv11, the wheels for an ld06")
+      ->check(CLI::IsMember({"model", "wheels", "gyro"}))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   for (const CLI::Option* o : app.get_options()) {
     if (o->count() > 0) opt.given.insert(o->get_name());

@@ -56,7 +56,7 @@ struct Options {
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
   std::string scan_times;
   bool write_regions = false;
-  std::string heading = "wheels";  // the prediction's heading: wheels, or gyro (FrontEndConfig::gyro_heading)
+  std::string heading = "model";  // the prediction's heading: model (the lidar's: ModelGyroHeading), wheels, or gyro
   std::string lidar = "ld06";      // ld06, or xv11 (sim::Xv11LidarConfig)
   std::string odometry = "wheels";  // wheels (+ gyro), gyro (no wheel encoders), heading-ticks, none
   int spins = 0;                    // an in-place spin every this many waypoints (0: none)
@@ -103,6 +103,13 @@ struct RobotOdometry {
   }
 };
 
+dpcr::LidarKind LidarKindOf(const Options& opt) { return opt.lidar == "xv11" ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06; }
+
+// --heading: named, or the lidar model's (hal/device_options.hpp).
+bool GyroHeading(const Options& opt) {
+  return opt.heading == "gyro" || (opt.heading == "model" && dpcr::ModelGyroHeading(LidarKindOf(opt)));
+}
+
 std::unique_ptr<dpcr::DeviceEmitter> MakeEmitter(const Options& opt, const dpcr::MapperConfig& config,
                                                  const dpcr::sim::SimConfig& sim_config) {
   if (opt.emit_device.empty()) return nullptr;
@@ -140,7 +147,7 @@ void PrintSummary(const Options& opt, const MapperType& mapper, const dpcr::outp
 // What was simulated: metrics.json "input".
 nlohmann::json InputMetrics(const Options& opt, const dpcr::sim::Simulation& sim, const dpcr::sim::SimConfig& sim_config) {
   const dpcr::sim::Pose2d& start = sim.start_pose();
-  return {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed}, {"heading", opt.heading}, {"lidar", opt.lidar}, {"odometry", opt.odometry}, {"spins", opt.spins},
+  return {{"world", opt.world}, {"minutes", opt.minutes}, {"seed", opt.seed}, {"heading", GyroHeading(opt) ? "gyro" : "wheels"}, {"lidar", opt.lidar}, {"odometry", opt.odometry}, {"spins", opt.spins},
           {"plan", opt.fixed_plan ? "fixed" : "varied by the seed"}, {"start_pose_in_world", {start.x, start.y, start.theta}},
           {"slip_events", sim.slip_events()}, {"people", opt.people},
           {"lidar_noise", {sim_config.lidar.noise_base_m, sim_config.lidar.noise_fraction}},
@@ -189,7 +196,7 @@ dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfi
   if (opt.start_heading_window_s >= 0.0) config.front_end.start_heading.window_s = static_cast<float>(opt.start_heading_window_s);
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
-  config.front_end.gyro_heading = opt.heading == "gyro";
+  config.front_end.gyro_heading = GyroHeading(opt);
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
   if (opt.grid_turn_deg == 0.0) config.front_end.grid_turn_rad = 0.0f;
   if (opt.grid_turn_deg > 0.0) {
@@ -369,8 +376,9 @@ void AddRunOptions(CLI::App& app, Options& opt) {
 
 // The robot's sensors and the mapper's knobs measured with them.
 void AddSensorOptions(CLI::App& app, Options& opt) {
-  app.add_option("--heading", opt.heading, "the prediction's heading increment: wheels, or the integrated gyro (wheels keep the translation)")
-      ->check(CLI::IsMember({"wheels", "gyro"}))->capture_default_str();
+  app.add_option("--heading", opt.heading, "the prediction's heading increment: wheels, or the integrated gyro (wheels keep the translation); "
+                 "model: the gyro for an xv11, the wheels for an ld06")
+      ->check(CLI::IsMember({"model", "wheels", "gyro"}))->capture_default_str();
   app.add_option("--lidar", opt.lidar, "simulated lidar: ld06 (10 Hz, 450 beams, 12 m) or xv11 (5 Hz, 360 at 1 deg, 0.15-6 m, "
                  "invalid and junk readings, spin-up); --emit-device writes its own packets")
       ->check(CLI::IsMember({"ld06", "xv11"}))->capture_default_str();
