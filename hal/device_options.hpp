@@ -4,6 +4,8 @@
 // a typical vacuum drive); a recording made elsewhere describes itself in device.json.
 #pragma once
 
+#include <string_view>
+
 #include "core/config.hpp"
 #include "hal/diff_drive_odometry.hpp"
 #include "hal/lidar_stream.hpp"
@@ -49,5 +51,10 @@ inline void ApplyLidarModel(LidarKind kind, LidarConfig* lidar) {
 // An LD06 corrects it scan by scan: 0.020 m with the wheels', 0.022 m with the gyro's. Without
 // gyro frames the wheels' heading is used anyway (FrontEndConfig::gyro_heading).
 inline bool ModelGyroHeading(LidarKind kind) { return kind == LidarKind::kXv11; }
+
+// A --heading choice (model, wheels or gyro) for this lidar: whether the gyro's heading is used.
+inline bool GyroHeadingFor(std::string_view choice, LidarKind kind) {
+  return choice == "gyro" || (choice == "model" && ModelGyroHeading(kind));
+}
 
 }  // namespace dpcr

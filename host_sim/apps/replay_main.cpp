@@ -273,7 +273,7 @@ int ReplayDevice(const Options& opt) {
   config.front_end.enable_registration = !opt.odometry_only;
   config.back_end.enable = !opt.front_end_only;
   // --heading: named, or the lidar model's (hal/device_options.hpp).
-  config.front_end.gyro_heading = opt.heading == "gyro" || (opt.heading == "model" && dpcr::ModelGyroHeading(lidar.kind));
+  config.front_end.gyro_heading = dpcr::GyroHeadingFor(opt.heading, lidar.kind);
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
   ApplyLocalisationOptions(opt, &config);
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));

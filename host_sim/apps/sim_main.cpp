@@ -106,9 +106,7 @@ struct RobotOdometry {
 dpcr::LidarKind LidarKindOf(const Options& opt) { return opt.lidar == "xv11" ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06; }
 
 // --heading: named, or the lidar model's (hal/device_options.hpp).
-bool GyroHeading(const Options& opt) {
-  return opt.heading == "gyro" || (opt.heading == "model" && dpcr::ModelGyroHeading(LidarKindOf(opt)));
-}
+bool GyroHeading(const Options& opt) { return dpcr::GyroHeadingFor(opt.heading, LidarKindOf(opt)); }
 
 std::unique_ptr<dpcr::DeviceEmitter> MakeEmitter(const Options& opt, const dpcr::MapperConfig& config,
                                                  const dpcr::sim::SimConfig& sim_config) {
@@ -117,7 +115,7 @@ std::unique_ptr<dpcr::DeviceEmitter> MakeEmitter(const Options& opt, const dpcr:
   dpcr::DeviceFilesConfig files;
   files.max_range_m = config.lidar.max_range_m;
   files.laser_offset_m = config.lidar.mount.x;  // dpcr-sim's lidar faces forward on the robot's axis
-  files.lidar = opt.lidar == "xv11" ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06;
+  files.lidar = LidarKindOf(opt);
   files.xv11_rate_hz = static_cast<float>(sim_config.lidar.rate_hz);
   if (!opt.ideal_bus) dpcr::RealisticBus(&files, static_cast<std::uint32_t>(opt.seed), opt.wheel_clock_ppm);
   auto emitter = std::make_unique<dpcr::DeviceEmitter>(files);
@@ -188,7 +186,7 @@ dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfi
   // As the device path tells the mapper of the model (junk filter, turning scans), with the
   // simulated range noise.
   const float range_noise_m = config.lidar.range_noise_m;
-  dpcr::ApplyLidarModel(opt.lidar == "xv11" ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06, &config.lidar);
+  dpcr::ApplyLidarModel(LidarKindOf(opt), &config.lidar);
   config.lidar.range_noise_m = range_noise_m;
   if (opt.near_weight_m >= 0.0) config.lidar.near_weight_range_m = static_cast<float>(opt.near_weight_m);
   if (opt.map_max_turn_dps >= 0.0) config.lidar.map_max_turn_rate_rad_s = static_cast<float>(opt.map_max_turn_dps * M_PI / 180.0);
