@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""sim_seeds.py on two short dpcr-sim runs: the summary's figures are the runs' own, a threshold
+"""sim_seeds.py on two short dpcr-sim runs: the summary's figures (the rigid-aligned mean too) are the runs' own, a threshold
 below every run counts every run as failed, and a dpcr-sim that fails is reported, not averaged."""
 import json
 import os
@@ -23,13 +23,16 @@ def main():
                    "--", "--minutes", "0.3")
         assert done.returncode == 0, done.stderr
         s = json.loads(done.stdout)
-        errors = []
+        errors, rigid = [], []
         for seed in (3, 4):
             with open(os.path.join(out, "s%d" % seed, "metrics.json")) as f:
-                errors.append(json.load(f)["accuracy"]["loc_err_ave_m"])
+                accuracy = json.load(f)["accuracy"]
+            errors.append(accuracy["loc_err_ave_m"])
+            rigid.append(accuracy["rigid_loc_err_ave_m"])
         assert s["runs"] == 2, s
         assert abs(s["mean_m"] - sum(errors) / 2) < 1e-12, (s, errors)
         assert abs(s["worst_m"] - max(errors)) < 1e-12, (s, errors)
+        assert abs(s["rigid_mean_m"] - sum(rigid) / 2) < 1e-12, (s, rigid)
         assert s["failed"] == 2 and s["failed_seeds"] == [3, 4], s
     bad = run("--sim", sim, "--first", "1", "--last", "1", "--", "--no-such-option")
     assert bad.returncode == 1 and "seed 1: dpcr-sim exited" in bad.stderr, (bad.returncode, bad.stderr)
