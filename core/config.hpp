@@ -273,7 +273,8 @@ struct FrontEndConfig {
   ReferenceConfig submap_reference = ReferenceWithThreshold(2000);
   ReferenceConfig region_reference = ReferenceWithThreshold(3000);
   // A new map's grid (the world frame) is turned by grid_turn_rad against the robot's first pose
-  // when the first scan's walls lie within grid_turn_band_rad of the grid's axes, as they do when
+  // when the first scan not skipped (after an XV-11's spin-up revolution) has its walls within
+  // grid_turn_band_rad of the grid's axes, as they do when
   // the robot starts square to a wall (from its dock): noisy walls along cell rows cost the
   // apartment 2.7x its LocErr_ave (core/geometry/wall_direction.hpp). 0 = never turned. Not for
   // a loaded map: its frame is kept.

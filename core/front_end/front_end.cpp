@@ -54,6 +54,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   consecutive_rejections_ = consecutive_second_rejections_ = 0;
   restart_pending_ = bent_ = false;
   grid_turn_pending_ = true;
+  grid_turn_stamp_us_ = 0;
   start_pending_ = true;
   step_turn_measured_ = step_turn_from_wheels_ = start_wheel_turns_ = false;
   start_heading_.Reset();
@@ -194,9 +195,9 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   ProjectedScan projected = ProjectScan(beams, config_.lidar, motion, s_.hits, s_.free_ends);
   counters_.beams_invalid += static_cast<std::uint32_t>(projected.invalid);
   counters_.beams_isolated += static_cast<std::uint32_t>(projected.isolated);
-  // Only the run's very first scan may turn the grid: any scan reported before it was in the old frame.
-  const bool may_turn_grid = std::exchange(grid_turn_pending_, false);
   if (SkipScan(projected, predicted)) return Status::kNotEnoughData;
+  // The first scan not skipped may turn the grid (not an XV-11's spin-up; ScanWorldPose turns that).
+  const bool may_turn_grid = std::exchange(grid_turn_pending_, false);
   const bool start_scan = std::exchange(start_pending_, false);  // the run's first scan not skipped
   // 0. Lost (wheels lifted, a long rejection streak, an unknown start): the scan goes into no
   // map; it tracks locally and searches the maps (front_end_relocalise.cpp).
@@ -210,7 +211,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
     FinishScan(since_last_us);
     return Status::kOk;
   }
-  if (may_turn_grid) TurnFrameFromWalls(Span<const Point2>(s_.hits.data(), projected.hits), &previous, &predicted);
+  if (may_turn_grid) TurnFrameFromWalls(stamp_us, Span<const Point2>(s_.hits.data(), projected.hits), &previous, &predicted);
   // 2. First registration against the submap (not for the very first scan: nothing to match).
   bool keep_out = false, bent = false;
   const bool first = s_.submap->size() == 0;
@@ -413,7 +414,8 @@ bool FrontEnd::KeepOutBent(std::size_t hits) {
   return true;
 }
 
-void FrontEnd::TurnFrameFromWalls(Span<const Point2> hits, Pose2* previous, Pose2* predicted) {
+void FrontEnd::TurnFrameFromWalls(std::int64_t stamp_us, Span<const Point2> hits, Pose2* previous, Pose2* predicted) {
+  grid_turn_stamp_us_ = stamp_us;  // scans skipped before this one were reported in the frame before any turn
   const FrontEndConfig& f = config_.front_end;
   // Only for a lidar that declares its range noise: the bands of cells are the noise's (with exact
   // ranges, walls along the rows map better, and a log's lidar says nothing of its noise).
@@ -455,7 +457,11 @@ void FrontEnd::FeedStartHeading(bool accepted) {
 }
 
 Pose2 FrontEnd::ScanWorldPose(std::int64_t stamp_us, int region, const Pose2& in_region, const Pose2& online) const {
-  const Pose2 world = region >= 0 && region < regions_.size() ? regions_[region].anchor * in_region : online;
+  Pose2 world = region >= 0 && region < regions_.size() ? regions_[region].anchor * in_region : online;
+  // A scan skipped before the grid turned was reported in the frame before the turn.
+  if (region < 0 && stamp_us < grid_turn_stamp_us_ && fe_counters_.grid_turn_rad != 0.0f) {
+    world = Pose2{0.0f, 0.0f, fe_counters_.grid_turn_rad} * world;
+  }
   if (start_heading_.outcome() != StartHeadingFit::Outcome::kApplied || stamp_us > start_heading_.start_stamp_us() ||
       start_region_ < 0 || start_region_ >= regions_.size()) {
     return world;

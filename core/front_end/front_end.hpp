@@ -211,7 +211,7 @@ class FrontEnd {
   // The run's first scan, into a new map: turns the world frame about its origin, and the robot's
   // poses in it (pose_, `previous`, `predicted`), so that the scan's walls lie off the grid's axes
   // when they lie along them (FrontEndConfig::grid_turn_rad; recorded in fe_counters_).
-  void TurnFrameFromWalls(Span<const Point2> hits, Pose2* previous, Pose2* predicted);
+  void TurnFrameFromWalls(std::int64_t stamp_us, Span<const Point2> hits, Pose2* previous, Pose2* predicted);
   // Without wheels, a scan whose velocity changed much since the last one (a turn starting or
   // stopping: twice FrontEndConfig::redeskew_min_*) is registered but kept out of the maps, which so
   // keep only well de-skewed scans; registration against them is absolute, so the bent scan's
@@ -341,7 +341,8 @@ class FrontEnd {
   int consecutive_rejections_ = 0;
   int consecutive_second_rejections_ = 0;  // in a mature regional map (TrackRegions)
   bool restart_pending_ = false;  // a submap restart is due, waiting for a scan with enough returns
-  bool grid_turn_pending_ = false;  // the next scan is the run's first: it may turn the grid
+  bool grid_turn_pending_ = false;  // no scan has been mapped yet: the next one may turn the grid
+  std::int64_t grid_turn_stamp_us_ = 0;  // the scan that could turn it; scans before it were in the old frame
   // The start heading's fit (FitStartHeading): pending until the run's first scan not skipped;
   // the last prediction's turn, whether a sensor measured it and whether the wheels did; whether
   // any turn since the start came from the wheels; the start scan's map and pose in it.
