@@ -107,8 +107,9 @@ class FrontEnd {
   const Pose2& last_scan_in_region() const { return last_scan_in_region_; }
   // The final world pose of a scan recorded after AddScan as (its stamp, last_scan_region(),
   // last_scan_in_region(), pose()): its map's anchor now times its pose in the map; a scan in no
-  // map keeps its online pose. The start scan, and the scans before it, follow the start heading
-  // once the gyro has refined it (start_heading.hpp): the map's frame stays, the start moves.
+  // map keeps its online pose, turned with the grid if it came before the grid's turn (a skipped
+  // spin-up). The start scan, and the scans before it, follow the start heading once the gyro
+  // has refined it (start_heading.hpp): the map's frame stays, the start moves.
   Pose2 ScanWorldPose(std::int64_t stamp_us, int region, const Pose2& in_region, const Pose2& online) const;
   const StartHeadingFit& start_heading() const { return start_heading_; }
 
@@ -208,9 +209,10 @@ class FrontEnd {
   // skipped one too (SkipScan).
   void FitStartHeading(std::int64_t stamp_us, bool start_scan, bool accepted);
   void FeedStartHeading(bool accepted);
-  // The run's first scan, into a new map: turns the world frame about its origin, and the robot's
-  // poses in it (pose_, `previous`, `predicted`), so that the scan's walls lie off the grid's axes
-  // when they lie along them (FrontEndConfig::grid_turn_rad; recorded in fe_counters_).
+  // The run's first scan not skipped, into a new map: turns the world frame about its origin, and
+  // the robot's poses in it (pose_, `previous`, `predicted`), so that the scan's walls lie off the
+  // grid's axes when they lie along them (FrontEndConfig::grid_turn_rad; recorded in fe_counters_).
+  // Scans skipped before it (a spin-up) keep their reported poses; ScanWorldPose turns them.
   void TurnFrameFromWalls(std::int64_t stamp_us, Span<const Point2> hits, Pose2* previous, Pose2* predicted);
   // Without wheels, a scan whose velocity changed much since the last one (a turn starting or
   // stopping: twice FrontEndConfig::redeskew_min_*) is registered but kept out of the maps, which so
