@@ -36,6 +36,9 @@ struct FirmwareConfig {
   DiffDriveConfig wheels{DiffDriveConfig{}.wheel_radius_m, DiffDriveConfig{}.track_width_m, 0.0f};
   float max_range_m = DeviceOptions{}.max_range_m;  // the device options (hal/device_options.hpp)
   float laser_offset_m = 0.0f;
+  // The robot's largest acceleration (FrontEndConfig::max_acceleration_mps2): without wheel
+  // translation (a gyro alone) the constant-velocity guess changes by no more. 0: no limit.
+  float max_accel_mps2 = FrontEndConfig{}.max_acceleration_mps2;
   bool gyro_heading = false;               // the prediction's heading from the CAN gyro (FrontEndConfig)
   bool heading_from_model = true;          // gyro_heading not named: the lidar model's (ModelGyroHeading)
   std::string map_dir = ".";               // loads map.dpcr from there and saves it there

@@ -67,7 +67,7 @@ bool ReadConfigObject(const std::string& path, Json* j, std::string* error) {
   }
   static const std::set<std::string> kKeys = {
       "uart", "baud", "lidar", "lidar_timing", "angle_sign", "max_range_m", "laser_offset_m", "can",
-      "wheel_radius_m", "track_width_m", "ticks_per_rev", "heading", "profile", "map_dir", "autosave_s",
+      "wheel_radius_m", "track_width_m", "ticks_per_rev", "max_accel_mps2", "heading", "profile", "map_dir", "autosave_s",
       "lidar_timeout_ms", "wheel_timeout_ms", "can_retry_ms", "status_period_s"};
   for (auto it = j->begin(); it != j->end(); ++it) {
     if (kKeys.count(it.key()) == 0) {
@@ -130,6 +130,7 @@ bool LoadFirmwareConfigFile(const std::string& path, FirmwareConfig* c, std::str
   r.Float("wheel_radius_m", &c->wheels.wheel_radius_m);
   r.Float("track_width_m", &c->wheels.track_width_m);
   r.Float("ticks_per_rev", &c->wheels.ticks_per_rev);
+  r.Float("max_accel_mps2", &c->max_accel_mps2);
   std::string text;
   if (r.String("heading", &text)) {
     if (text != "model" && text != "wheels" && text != "gyro") r.Fail("heading", "\"" + text + "\" is not model, wheels or gyro");
@@ -174,6 +175,8 @@ bool ValidateFirmwareConfig(const FirmwareConfig& c, std::string* error) {
     *error = "max_range_m: out of range (0.5 .. 100 m)";
   } else if (!in(c.laser_offset_m, -1.0f, 1.0f)) {
     *error = "laser_offset_m: out of range (-1 .. 1 m)";
+  } else if (!in(c.max_accel_mps2, 0.0f, 100.0f)) {
+    *error = "max_accel_mps2: out of range (0 .. 100 m/s^2; 0: no limit)";
   } else if (c.map_dir.empty()) {
     *error = "map_dir: empty";
   } else if (c.autosave_s < 0) {

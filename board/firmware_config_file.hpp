@@ -3,7 +3,8 @@
 // write them) plus the board's:
 //   uart, baud, lidar ("ld06" | "xv11"), lidar_timing ("arrival" | "device"), angle_sign,
 //   max_range_m, laser_offset_m, can, wheel_radius_m, track_width_m, ticks_per_rev (required),
-//   heading ("wheels" | "gyro"), profile ("vacuum"), map_dir, autosave_s, lidar_timeout_ms,
+//   max_accel_mps2,
+//   heading ("model" | "wheels" | "gyro"), profile ("vacuum"), map_dir, autosave_s, lidar_timeout_ms,
 //   wheel_timeout_ms, can_retry_ms, status_period_s
 // An unknown key, a value of the wrong type or out of its range, or a missing ticks_per_rev is
 // an error: one line naming the file and the key. Checked at start, before any device is opened.

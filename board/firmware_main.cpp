@@ -18,6 +18,7 @@ void Usage() {
                "                     [--status-period S] [--angle-sign 1|-1] [--wheel-radius M] [--track-width M]\n"
                "                     --ticks-per-rev N (or ticks_per_rev in --config: required)\n"
                "                     [--max-range M] [--laser-offset M] [--heading model|wheels|gyro]\n"
+               "                     [--max-accel A] (the robot's largest acceleration, m/s^2; 0: no limit)\n"
                "                     [--can-fd FD]   (an open fd carrying struct can_frame, for tests)\n"
                "                     [--lidar-timing arrival|device] (LD06: stamp packets by their own clock)\n"
                "                     [--trajectory FILE] (TUM, written at exit) [--record DIR] (received streams)\n"
@@ -133,6 +134,8 @@ bool ApplyOption(const std::string& a, const char* v, dpcr::board::FirmwareConfi
     return ParseFloat(o, v, &c->max_range_m);
   } else if (a == "--laser-offset") {
     return ParseFloat(o, v, &c->laser_offset_m);
+  } else if (a == "--max-accel") {
+    return ParseFloat(o, v, &c->max_accel_mps2);
   } else {
     std::fprintf(stderr, "dpcr-firmware: error: unknown option %s\n", o);
     Usage();

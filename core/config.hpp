@@ -233,6 +233,11 @@ struct FrontEndConfig {
   // Odometry prior of the first registration (PosePrior units: unit-weight point residuals).
   float prior_info_xy = 20.0f;
   float prior_info_theta = 20.0f;
+  // The robot's largest acceleration (m/s^2): where no wheels measure the translation, the
+  // constant-velocity guess changes by no more than this from scan to scan (acceleration_limit.hpp).
+  // A vacuum's drive accelerates at about 0.5 m/s^2 (the simulator's robot too); a faster robot
+  // sets its own. 0: no limit.
+  float max_acceleration_mps2 = 0.5f;
   // A first registration rejected from the wheels' prediction is tried again from the constant
   // velocity's when the two differ by more than these (0: never; wheels without a gyro heading).
   // Logged odometry stalls and then catches up in one step (mit-csail.clf: 0.85 m and 50 deg in

@@ -135,6 +135,8 @@ class FrontEnd {
   // and per second (the de-skew's, core/front_end/scan_motion.hpp).
   Pose2 ConstantVelocity(std::int64_t dt_us) const;
   Pose2 VelocityPerSecond() const;
+  // The scan's registered step as the next constant-velocity guess (acceleration_limit.hpp).
+  Pose2 GuessedVelocityStep(const Pose2& step, std::int64_t dt_us) const;
   // After a rejected scan: the last motion fades (see the definition for what is held).
   void FadeConstantVelocity();
   bool HoldsVelocity() const {

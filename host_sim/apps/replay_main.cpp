@@ -46,6 +46,7 @@ struct Options {
   std::vector<float> start_pose{0.0f, 0.0f, 0.0f};
   bool localise_only = false;
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
+  float max_accel_mps2 = -1.0f;  // < 0: the configuration's (FrontEndConfig::max_acceleration_mps2)
   std::string scan_times;
   bool write_regions = false;
   std::string heading = "model";  // FrontEndConfig::gyro_heading (model: ModelGyroHeading)
@@ -135,6 +136,7 @@ dpcr::MapperConfig CarmenMapperConfig(const Options& opt, float log_laser_offset
   const float offset = std::isnan(opt.laser_offset_m) ? log_laser_offset_m : opt.laser_offset_m;
   config.lidar.mount = dpcr::Pose2{offset, 0.0f, 0.0f};
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
+  if (opt.max_accel_mps2 >= 0.0f) config.front_end.max_acceleration_mps2 = opt.max_accel_mps2;
   ApplyLocalisationOptions(opt, &config);
   return config;
 }
@@ -275,6 +277,7 @@ int ReplayDevice(const Options& opt) {
   // --heading: named, or the lidar model's (hal/device_options.hpp).
   config.front_end.gyro_heading = dpcr::GyroHeadingFor(opt.heading, lidar.kind);
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
+  if (opt.max_accel_mps2 >= 0.0f) config.front_end.max_acceleration_mps2 = opt.max_accel_mps2;
   ApplyLocalisationOptions(opt, &config);
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));
   LoadMapIfAsked(opt, &mapper);
@@ -294,7 +297,8 @@ int ReplayDevice(const Options& opt) {
                        {"lidar_smoothing_max_gap_beams", config.lidar.smoothing_max_gap_beams},
                        {"lidar_near_weight_range_m", config.lidar.near_weight_range_m},
                        {"lidar_map_max_turn_rate_dps", config.lidar.map_max_turn_rate_rad_s * 180.0 / M_PI},
-                       {"heading", config.front_end.gyro_heading ? "gyro" : "wheels"}};
+                       {"heading", config.front_end.gyro_heading ? "gyro" : "wheels"},
+                       {"max_acceleration_mps2", config.front_end.max_acceleration_mps2}};
   metrics["input"] = {{"uart", opt.uart}, {"candump", opt.candump}, {"lidar", lidar_name},
                       {"packets", c.lidar.packets}, {"bad_packets", c.lidar.bad_packets}, {"resyncs", c.lidar.resyncs},
                       {"discarded_bytes", c.lidar.discarded_bytes}, {"revolutions", c.lidar.revolutions},
@@ -351,6 +355,8 @@ int main(int argc, char** argv) {
       ->expected(3)->delimiter(',');
   app.add_flag("--localise-only", opt.localise_only, "with --load-map: maps frozen (nothing inserted, no new region, graph unchanged)");
   app.add_option("--save-map", opt.save_map, "save the map at the end (atomically), for --load-map and dpcr-map");
+  app.add_option("--max-accel", opt.max_accel_mps2, "the robot's largest acceleration (m/s^2): without wheel translation the "
+                 "constant-velocity guess changes by no more (default: the configuration's, 0.5; 0: no limit)");
   app.add_option("--region-width", opt.region_width_m, "region width S in metres (default: the configuration's, 4 m)")
       ->check(CLI::PositiveNumber);
   app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");

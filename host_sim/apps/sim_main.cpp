@@ -41,6 +41,7 @@ struct Options {
   double grid_turn_deg = -1.0;  // < 0: the configuration's
   double near_weight_m = -1.0;  // < 0: a vacuum lidar's (kVacuumNearWeightRangeM)
   double map_max_turn_dps = -1.0;  // < 0: the lidar model's (ApplyLidarModel)
+  double max_accel_mps2 = -1.0;    // < 0: the configuration's (FrontEndConfig::max_acceleration_mps2)
   double smoothing_gap_beams = -1.0;  // < 0: the lidar model's (ApplyLidarModel)
   double start_heading_window_s = -1.0;  // < 0: the configuration's
   std::string load_map;
@@ -153,6 +154,14 @@ nlohmann::json InputMetrics(const Options& opt, const dpcr::sim::Simulation& sim
           {"doors", {{"moving", sim.doors().size()}, {"scheduled_changes", sim.doors().scheduled_changes()}}}, {"kidnaps", opt.kidnaps}, {"coverage_tours", sim.tours_completed()}};
 }
 
+// The mapper settings a run's figures depend on, beside the simulation's in metrics.json `input`.
+void AddMapperInputs(const dpcr::MapperConfig& config, nlohmann::json* input) {
+  (*input)["unsettle_after"] = {config.grid.unsettle_occupied_after, config.grid.unsettle_free_after};
+  (*input)["near_weight_range_m"] = config.lidar.near_weight_range_m;
+  (*input)["map_max_turn_rate_dps"] = config.lidar.map_max_turn_rate_rad_s * 180.0 / M_PI;
+  (*input)["max_acceleration_mps2"] = config.front_end.max_acceleration_mps2;
+}
+
 // What to simulate: the options' seed, length, lidar (and its motor), spins, kidnaps and people.
 dpcr::sim::SimConfig SimulationConfig(const Options& opt) {
   dpcr::sim::SimConfig c;
@@ -190,6 +199,7 @@ dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfi
   config.lidar.range_noise_m = range_noise_m;
   if (opt.near_weight_m >= 0.0) config.lidar.near_weight_range_m = static_cast<float>(opt.near_weight_m);
   if (opt.map_max_turn_dps >= 0.0) config.lidar.map_max_turn_rate_rad_s = static_cast<float>(opt.map_max_turn_dps * M_PI / 180.0);
+  if (opt.max_accel_mps2 >= 0.0) config.front_end.max_acceleration_mps2 = static_cast<float>(opt.max_accel_mps2);
   if (opt.smoothing_gap_beams >= 0.0) config.lidar.smoothing_max_gap_beams = static_cast<float>(opt.smoothing_gap_beams);
   if (opt.start_heading_window_s >= 0.0) config.front_end.start_heading.window_s = static_cast<float>(opt.start_heading_window_s);
   config.front_end.enable_registration = !opt.odometry_only;
@@ -313,9 +323,7 @@ int Run(const Options& opt) {
   dpcr::output::FinalizeTrajectory(mapper, &run);
   nlohmann::json metrics = dpcr::output::MapperMetrics(mapper);
   metrics["input"] = InputMetrics(opt, sim, sim_config);
-  metrics["input"]["unsettle_after"] = {config.grid.unsettle_occupied_after, config.grid.unsettle_free_after};
-  metrics["input"]["near_weight_range_m"] = config.lidar.near_weight_range_m;
-  metrics["input"]["map_max_turn_rate_dps"] = config.lidar.map_max_turn_rate_rad_s * 180.0 / M_PI;
+  AddMapperInputs(config, &metrics["input"]);
   AddRelocalisationFigures(opt, mapper, sim, run, recoveries, lost, align, &metrics);
   if (opt.spins > 0) metrics["spins"] = spins.Metrics();
   const dpcr::output::FusedMap fused = dpcr::output::RenderFused(mapper);
@@ -410,6 +418,8 @@ void AddSensorOptions(CLI::App& app, Options& opt) {
   app.add_option("--start-heading-window", opt.start_heading_window_s, "with a gyro's turns or heading-only ticks, refine the start's "
                  "heading from the scans of this many seconds after it (StartHeadingConfig::window_s, default 30; 0: never)")
       ->check(CLI::Range(0.0, 600.0));
+  app.add_option("--max-accel", opt.max_accel_mps2, "the robot's largest acceleration (m/s^2): without wheel translation the "
+                 "constant-velocity guess changes by no more (FrontEndConfig::max_acceleration_mps2, default 0.5; 0: no limit)");
   app.add_option("--map-max-turn", opt.map_max_turn_dps, "scans taken turning faster than this go into the submap but not the "
                  "regional maps (deg/s; LidarConfig::map_max_turn_rate_rad_s, default: ld06 60, xv11 0; 0: every scan)")
       ->check(CLI::Range(0.0, 5000.0));

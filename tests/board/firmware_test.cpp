@@ -159,7 +159,7 @@ TEST_CASE("firmware config file: the robot's parameters, every mistake one line 
   dpcr::board::FirmwareConfig c;
   std::string error;
   REQUIRE(load(R"({"uart": "/dev/ttyS3", "can": "can1", "lidar": "xv11", "angle_sign": 1, "wheel_radius_m": 0.04,
-                   "track_width_m": 0.25, "ticks_per_rev": 4096, "max_range_m": 6, "laser_offset_m": 0.05,
+                   "track_width_m": 0.25, "ticks_per_rev": 4096, "max_range_m": 6, "laser_offset_m": 0.05, "max_accel_mps2": 1.5,
                    "heading": "gyro", "profile": "vacuum", "map_dir": "/var/lib/dpcr", "autosave_s": 30,
                    "status_period_s": 60})",
                &c, &error));
@@ -171,6 +171,7 @@ TEST_CASE("firmware config file: the robot's parameters, every mistake one line 
   CHECK(c.wheels.wheel_radius_m == 0.04f);
   CHECK(c.wheels.ticks_per_rev == 4096.0f);
   CHECK(c.laser_offset_m == 0.05f);
+  CHECK(c.max_accel_mps2 == 1.5f);
   CHECK(c.gyro_heading);
   CHECK_FALSE(c.heading_from_model);  // named: not the lidar model's (ModelGyroHeading)
   CHECK(c.autosave_s == 30);
@@ -198,6 +199,7 @@ TEST_CASE("firmware config file: the robot's parameters, every mistake one line 
   refused(R"({"wheel_radius_m": 0.035})", "ticks_per_rev: required");
   refused(R"({"ticks_per_rev": 4096, "tick_per_rev": 1})", "tick_per_rev: unknown key");
   refused(R"({"ticks_per_rev": "4096"})", "ticks_per_rev: expected a number");
+  refused(R"({"ticks_per_rev": 4096, "max_accel_mps2": -1})", "max_accel_mps2: out of range");
   refused(R"({"ticks_per_rev": 4096, "profile": "building"})", "profile: \"building\"");
   refused(R"({"ticks_per_rev": 4096, "lidar": "rplidar"})", "lidar: \"rplidar\" is not ld06 or xv11");
   refused(R"({"ticks_per_rev": 4096, "wheel_radius_m": 3})", "wheel_radius_m: out of range");
