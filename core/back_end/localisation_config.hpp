@@ -44,6 +44,9 @@ struct LocalisationConfig {
   // its believed pose (every heading; the same ambiguity test and verification as the global
   // search), and globally once that round fails or the window would pass the map's square and
   // margin. near_window_m 0: off (the second registration's near fix, as with a heading sensor).
+  // With a heading sensor the window bounds the fixes taken at once: one farther from the belief
+  // of a robot that was not carried must be clear or agree with a held one (clear_min_score below;
+  // FrontEnd::PastNearWindow). 0: every verified fix at once.
   float near_window_m = 0.3f;
   float near_window_mps = 0.3f;
   // Without a heading sensor, a fix scoring below clear_min_score or whose separate second best

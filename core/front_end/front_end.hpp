@@ -289,9 +289,14 @@ class FrontEnd {
   // The half window of headings a lost robot's search covers about its believed heading
   // (LocalisationConfig::heading_window_rad; 0: every heading).
   float HeadingWindow() const;
-  // Without a heading sensor (LocalisationConfig::clear_min_score): whether a verified fix is
-  // taken now, clear or agreeing with the held one; else it is held.
+  // Whether a verified fix is taken now, clear or agreeing with the held one
+  // (LocalisationConfig::clear_min_score); else it is held. Without a heading sensor always; with
+  // one only when the fix is past the near window of a robot that was not carried.
   bool TakeFix(const GlobalFix& fix);
+  // A robot that lost track where it was (not carried) is near its belief: a fix farther than the
+  // near window (LocalisationConfig::near_window_m) from it is a look-alike as often as a slip
+  // (XV-11, half its readings, gyro alone, seed 4: a fix 3.4 m back along the robot's lane).
+  bool PastNearWindow(const GlobalFix& fix) const;
   // The submap frame in the world by a fix of the frozen scan.
   Pose2 SubmapFrameOf(const GlobalFix& fix) const;
   void ResumeAt(const GlobalFix& fix);

@@ -155,7 +155,7 @@ float FrontEnd::HeadingWindow() const {
 
 bool FrontEnd::TakeFix(const GlobalFix& fix) {
   const LocalisationConfig& c = config_.localisation;
-  if (HeadingMeasured()) return true;
+  if (HeadingMeasured() && !PastNearWindow(fix)) return true;
   if (fix.score >= c.clear_min_score && fix.second_score <= c.clear_max_ratio * fix.score) return true;
   // Where the robot would be now by this fix and by the held one (each places the submap frame).
   const Pose2 frame = SubmapFrameOf(fix);
@@ -171,6 +171,14 @@ bool FrontEnd::TakeFix(const GlobalFix& fix) {
   }
   localiser_.Hold(s_.back_end, frame);
   return false;
+}
+
+bool FrontEnd::PastNearWindow(const GlobalFix& fix) const {
+  const LocalisationConfig& c = config_.localisation;
+  if (!may_be_near_ || !(c.near_window_m > 0.0f)) return false;
+  const Pose2 by_fix = SubmapFrameOf(fix) * pose_;
+  const Pose2 believed = pose();
+  return std::hypot(by_fix.x - believed.x, by_fix.y - believed.y) > c.near_window_m + c.near_window_mps * LostSeconds();
 }
 
 Pose2 FrontEnd::SubmapFrameOf(const GlobalFix& fix) const {
