@@ -76,7 +76,7 @@ bool Firmware::Start() {
   device.laser_offset_m = config_.laser_offset_m;
   device.ApplyTo(&mapper_config.lidar);
   ApplyLidarModel(config_.lidar, &mapper_config.lidar);  // as dpcr-replay
-  mapper_config.front_end.gyro_heading = config_.heading_from_model ? ModelGyroHeading(config_.lidar) : config_.gyro_heading;
+  mapper_config.front_end.gyro_heading = GyroHeadingFor(config_.heading, config_.lidar);
   mapper_config.front_end.max_acceleration_mps2 = config_.max_accel_mps2;
   if (mapper_->Init(mapper_config) != Status::kOk) {
     std::fprintf(log_, "dpcr-firmware: error: mapper configuration rejected\n");

@@ -39,8 +39,9 @@ struct FirmwareConfig {
   // The robot's largest acceleration (FrontEndConfig::max_acceleration_mps2): without wheel
   // translation (a gyro alone) the constant-velocity guess changes by no more. 0: no limit.
   float max_accel_mps2 = FrontEndConfig{}.max_acceleration_mps2;
-  bool gyro_heading = false;               // the prediction's heading from the CAN gyro (FrontEndConfig)
-  bool heading_from_model = true;          // gyro_heading not named: the lidar model's (ModelGyroHeading)
+  // The prediction's heading: "model" (the lidar's: ModelGyroHeading), "wheels" or "gyro" (the
+  // CAN gyro's); FrontEndConfig::gyro_heading is GyroHeadingFor(heading, lidar), as in dpcr-replay.
+  std::string heading = "model";
   std::string map_dir = ".";               // loads map.dpcr from there and saves it there
   int autosave_s = 60;                     // 0: only on exit
   int lidar_timeout_ms = 2000;             // no packet for this long: reported, exit 2

@@ -80,8 +80,7 @@ bool ApplyChoice(const std::string& a, const char* v, dpcr::board::FirmwareConfi
       std::fprintf(stderr, "dpcr-firmware: error: unknown heading '%s' (model, wheels, gyro)\n", v);
       return false;
     }
-    c->gyro_heading = std::strcmp(v, "gyro") == 0;
-    c->heading_from_model = std::strcmp(v, "model") == 0;
+    c->heading = v;
   } else if (a == "--angle-sign") {
     if (std::strcmp(v, "1") != 0 && std::strcmp(v, "-1") != 0) {
       std::fprintf(stderr, "dpcr-firmware: error: --angle-sign: '%s' (1 or -1)\n", v);

@@ -399,3 +399,28 @@ TEST_CASE("firmware: ticks per revolution must be stated") {
   std::fclose(log);
   CHECK(text.find("ticks per revolution are not stated") != std::string::npos);
 }
+
+TEST_CASE("firmware: the heading choice and the robot's acceleration reach the mapper") {
+  const OfficeStreams& o = dpcr::test::Office15s();
+  const auto started = [&](dpcr::LidarKind lidar, const std::string& heading, float max_accel_mps2) {
+    LoopRun run(o, o.records);
+    MemoryStore store;
+    dpcr::board::FirmwareConfig config = ConfigFor(o);
+    config.lidar = lidar;
+    config.heading = heading;
+    config.max_accel_mps2 = max_accel_mps2;
+    std::FILE* log = std::tmpfile();
+    dpcr::board::Firmware firmware(config, dpcr::board::FirmwarePorts{&run.uart, &run.can, &run.clock, &store, nullptr}, log);
+    REQUIRE(firmware.Start());
+    const dpcr::FrontEndConfig f = firmware.mapper().config().front_end;
+    std::fclose(log);
+    return f;
+  };
+  // "model": the lidar's (ModelGyroHeading), as dpcr-replay and dpcr-sim take it.
+  CHECK_FALSE(started(dpcr::LidarKind::kLd06, "model", 0.5f).gyro_heading);
+  CHECK(started(dpcr::LidarKind::kXv11, "model", 0.5f).gyro_heading);
+  CHECK(started(dpcr::LidarKind::kLd06, "gyro", 0.5f).gyro_heading);
+  CHECK_FALSE(started(dpcr::LidarKind::kXv11, "wheels", 0.5f).gyro_heading);
+  CHECK(started(dpcr::LidarKind::kLd06, "model", 1.5f).max_acceleration_mps2 == 1.5f);
+  CHECK(started(dpcr::LidarKind::kLd06, "model", 0.0f).max_acceleration_mps2 == 0.0f);
+}

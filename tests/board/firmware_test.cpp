@@ -172,8 +172,7 @@ TEST_CASE("firmware config file: the robot's parameters, every mistake one line 
   CHECK(c.wheels.ticks_per_rev == 4096.0f);
   CHECK(c.laser_offset_m == 0.05f);
   CHECK(c.max_accel_mps2 == 1.5f);
-  CHECK(c.gyro_heading);
-  CHECK_FALSE(c.heading_from_model);  // named: not the lidar model's (ModelGyroHeading)
+  CHECK(c.heading == "gyro");  // named: not the lidar model's (ModelGyroHeading)
   CHECK(c.autosave_s == 30);
   CHECK(c.status_period_ms == 60000);
 
@@ -182,11 +181,11 @@ TEST_CASE("firmware config file: the robot's parameters, every mistake one line 
   CHECK(load(R"({"lidar": "ld06", "angle_sign": 1.0, "wheel_radius_m": 0.035, "track_width_m": 0.235,
                  "ticks_per_rev": 4096.0, "max_range_m": 12.0, "laser_offset_m": 0.0})",
              &d, &error));
-  CHECK(d.heading_from_model);  // not named: the lidar model's
+  CHECK(d.heading == "model");  // not named: the lidar model's
   dpcr::board::FirmwareConfig named_model;
-  named_model.heading_from_model = false;
+  named_model.heading = "wheels";
   CHECK(load(R"({"ticks_per_rev": 4096, "heading": "model"})", &named_model, &error));
-  CHECK(named_model.heading_from_model);
+  CHECK(named_model.heading == "model");
 
   const auto refused = [&](const std::string& json, const std::string& expect) {
     dpcr::board::FirmwareConfig x;
