@@ -284,6 +284,9 @@ class FrontEnd {
   // Without a heading sensor (LocalisationConfig::near_window_m): the half-width of the local
   // round's window around the believed pose, 0 when the round is global.
   float NearWindow() const;
+  // How far from its belief a robot that lost track without being carried may be: near_window_m +
+  // near_window_mps x the time since the streak began (LocalisationConfig).
+  float NearDistance() const;
   // Seconds since the streak that lost the robot began (0 or more).
   float LostSeconds() const;
   // The half window of headings a lost robot's search covers about its believed heading

@@ -139,10 +139,15 @@ float FrontEnd::LostSeconds() const {
   return lost_s > 0.0f ? lost_s : 0.0f;
 }
 
+float FrontEnd::NearDistance() const {
+  const LocalisationConfig& c = config_.localisation;
+  return c.near_window_m + c.near_window_mps * LostSeconds();
+}
+
 float FrontEnd::NearWindow() const {
   const LocalisationConfig& c = config_.localisation;
   if (!may_be_near_ || near_failed_ || HeadingMeasured() || !(c.near_window_m > 0.0f) || regions_.current() < 0) return 0.0f;
-  const float window = c.near_window_m + c.near_window_mps * LostSeconds();
+  const float window = NearDistance();
   // Past the map's square and margin the local round would be the global one's work on one map.
   return window < 0.5f * config_.front_end.region_width_m + c.window_margin_m ? window : 0.0f;
 }
@@ -178,7 +183,7 @@ bool FrontEnd::PastNearWindow(const GlobalFix& fix) const {
   if (!may_be_near_ || !(c.near_window_m > 0.0f)) return false;
   const Pose2 by_fix = SubmapFrameOf(fix) * pose_;
   const Pose2 believed = pose();
-  return std::hypot(by_fix.x - believed.x, by_fix.y - believed.y) > c.near_window_m + c.near_window_mps * LostSeconds();
+  return std::hypot(by_fix.x - believed.x, by_fix.y - believed.y) > NearDistance();
 }
 
 Pose2 FrontEnd::SubmapFrameOf(const GlobalFix& fix) const {
