@@ -4,6 +4,7 @@
 
 #include "core/back_end/region_cloud.hpp"
 #include "core/base/assert.hpp"
+#include "core/registration/pivot_frame.hpp"
 
 namespace dpcr {
 namespace {
@@ -136,9 +137,14 @@ bool BackEnd::MatchMaps(Span<RegionalMap> regions, int older, int newer) {
   // doorways) it ends near where it starts, and started from a graph bent by a wrong closure it
   // would measure the bend and hold it in place.
   const int previous = s_.graph->FindEdge(EdgeKind::kMapMatch, older, newer);
-  const Pose2 initial = previous >= 0 ? s_.graph->edge(previous).measurement : Between(ref.anchor, target.anchor);
-  const RegistrationResult r = RegisterImproved(*s_.reference, Span<const Point2>(s_.cloud.data(), n), initial, nullptr,
-                                                config_->registration, s_.correspondences);
+  const Pose2 measured = previous >= 0 ? s_.graph->edge(previous).measurement : Between(ref.anchor, target.anchor);
+  // Posed about the cloud's centroid: a map's cells reach the lidar's range from its anchor
+  // (pivot_frame.hpp).
+  const Point2 pivot = RecentreOnCentroid(Span<Point2>(s_.cloud.data(), n));
+  RegistrationResult r = RegisterImproved(*s_.reference, Span<const Point2>(s_.cloud.data(), n), PivotPose(measured, pivot),
+                                          nullptr, config_->registration, s_.correspondences);
+  r.pose = FramePose(r.pose, pivot);
+  r.hessian = FrameInformation(r.hessian, r.pose, pivot);
   if (r.verdict != Status::kOk) return false;
   // Eq. 11 on the thinned cloud: matched points over the mean cloud size, both counted at the
   // thinning of the target (the reference's cells thinned alike).

@@ -7,6 +7,7 @@
 #include "core/front_end/reference_for_noise.hpp"
 #include "core/geometry/wall_direction.hpp"
 #include "core/grid/ray_caster.hpp"
+#include "core/registration/pivot_frame.hpp"
 
 namespace dpcr {
 namespace {
@@ -801,11 +802,13 @@ RegistrationResult FrontEnd::RegisterSubmap(RegionalMap& r) {
   // clutter included) and cell centres moved onto their refitted lines; both were less accurate.
   const std::size_t count = SubmapTarget();
   if (count == 0) return RegistrationResult{};
-  const Pose2 initial = r.anchor.Inverse() * submap_pose_;
+  const Point2 pivot = target_pivot_;
+  const Pose2 initial = PivotPose(r.anchor.Inverse() * submap_pose_, pivot);
   const PosePrior prior{initial, f.prior_info_xy, f.prior_info_theta};
-  const RegistrationResult res =
-      RegisterImproved(*s_.region_reference, Span<const Point2>(s_.target.data(), count), initial, &prior,
-                       f.second_registration, s_.correspondences);
+  RegistrationResult res = RegisterImproved(*s_.region_reference, Span<const Point2>(s_.target.data(), count), initial,
+                                            &prior, f.second_registration, s_.correspondences);
+  res.pose = FramePose(res.pose, pivot);
+  res.hessian = FrameInformation(res.hessian, res.pose, pivot);
   ++fe_counters_.second_registrations;
   if (res.verdict == Status::kOk) {
     submap_pose_ = r.anchor * res.pose;  // the submap, and the robot in it, move together
@@ -877,7 +880,8 @@ void FrontEnd::EnterKnownRegion() {
   // Only a small correction is trusted from PLICP alone (the search's base window); a larger
   // one may be a neighbouring minimum (a wall one doorway over), and the search verifies it.
   if (aligned && frame == region) {
-    const Pose2 correction = Between(regions_[region].anchor.Inverse() * submap_before, result.pose);
+    const Pose2 correction =
+        ChangeAboutPivot(Between(regions_[region].anchor.Inverse() * submap_before, result.pose), target_pivot_);
     if (!WithinSearchBaseWindow(config_.back_end, correction)) {
       submap_pose_ = submap_before;
       aligned = false;
@@ -912,6 +916,8 @@ std::size_t FrontEnd::SubmapTarget() {
   const std::size_t stride = (n + max_points - 1) / max_points;
   std::size_t count = 0;
   for (std::size_t i = 0; i < n; i += stride) s_.target[count++] = sub.CellCentre(static_cast<std::uint16_t>(i));
+  // Registered about their centroid, not the submap frame's far origin (pivot_frame.hpp).
+  target_pivot_ = RecentreOnCentroid(Span<Point2>(s_.target.data(), count));
   return count;
 }
 
@@ -921,7 +927,8 @@ void FrontEnd::BeginLoopClosure(int from) {
   path_at_closure_try_ = path_m_;
   const std::size_t n = SubmapTarget();
   const float path = path_m_ - regions_[region].path_at_last_scan_m;
-  if (back_end_.BeginLoopClosure(regions_.maps(), region, from, Span<const Point2>(s_.target.data(), n), submap_pose_,
+  if (back_end_.BeginLoopClosure(regions_.maps(), region, from, Span<const Point2>(s_.target.data(), n),
+                                 PivotPose(submap_pose_, target_pivot_),
                                  path)) {
     InvalidateRegionReference();  // its table holds the search grid now
   }
@@ -931,11 +938,12 @@ void FrontEnd::FinishLoopClosure() {
   const int region = back_end_.search_region();
   const std::size_t n = SubmapTarget();
   const LoopClosureResult r =
-      back_end_.FinishLoopClosure(regions_.maps(), Span<const Point2>(s_.target.data(), n), submap_pose_);
+      back_end_.FinishLoopClosure(regions_.maps(), Span<const Point2>(s_.target.data(), n),
+                                  PivotPose(submap_pose_, target_pivot_));
   InvalidateRegionReference();
   if (r.verdict != Status::kOk) return;
   // The anchors have moved (the graph took the closure); the submap belongs where it was found.
-  submap_pose_ = regions_[region].anchor * r.submap_in_region;
+  submap_pose_ = FramePose(regions_[region].anchor * r.submap_in_region, target_pivot_);
   anchor_region_ = region;
   lost_in_region_ = false;
 }

@@ -322,7 +322,8 @@ class FrontEnd {
   void BeginLoopClosure(int from);
   void FinishLoopClosure();
   void StepBackEnd();
-  // The submap's obstacle cells (from its reference), thinned to the target capacity.
+  // The submap's obstacle cells (from its reference), thinned to the target capacity, moved so
+  // that their centroid, target_pivot_ in the submap's frame, is their origin.
   std::size_t SubmapTarget();
 
   FrontEndStorage s_;
@@ -336,6 +337,7 @@ class FrontEnd {
   RegionSet regions_;
   Pose2 pose_;         // robot in the submap frame
   Pose2 submap_pose_;  // submap frame in the world
+  Point2 target_pivot_;  // where the submap target's points were centred (SubmapTarget), in the submap frame
   Pose2 last_odom_;  // the odometry pose at the last scan's stamp (Predict)
   Pose2 last_motion_;  // the last scan-to-scan motion, in the earlier scan's frame
   std::int32_t last_motion_us_ = 0;   // the time it took

@@ -246,7 +246,9 @@ TEST_CASE("Started at an unknown pose that matches nothing: stays lost, changes 
   CHECK(Render(*m) == before);
 }
 
-// A robot started 0.8 m and 20 deg off in a loaded map (the slip), with the lidar alone or with a
+// A robot started 0.8 m and 34 deg off in a loaded map (the slip: a turn past what a second
+// registration may correct, PlicpConfig::max_correction_rad; a 20 deg slip it corrects itself since
+// it registers about the submap's centroid, pivot_frame.hpp), with the lidar alone or with a
 // gyro's samples but no wheels, and the slip rule after `slipped_after` rejected second
 // registrations (0: off): its relocalisations and its final error.
 namespace {
@@ -254,7 +256,7 @@ std::pair<std::uint32_t, double> RunSlipped(int slipped_after, bool gyro) {
   const dpcr::sim::SimConfig sim_config = SimConfigFor(1, 0.75);
   dpcr::MapperConfig config = MapperConfigFor(sim_config);
   config.front_end.lidar_only_lost_after_second_rejections = slipped_after;
-  auto m = Loaded(config, dpcr::Pose2{0.8f, 0.0f, 0.35f});
+  auto m = Loaded(config, dpcr::Pose2{0.8f, 0.0f, 0.6f});
   dpcr::sim::Simulation sim(dpcr::sim::LoadBuiltinWorld("apartment"), sim_config);
   dpcr::sim::SimEvent e;
   double error_m = 1e9;
