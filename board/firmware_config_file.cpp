@@ -133,7 +133,7 @@ bool LoadFirmwareConfigFile(const std::string& path, FirmwareConfig* c, std::str
   r.Float("max_accel_mps2", &c->max_accel_mps2);
   std::string text;
   if (r.String("heading", &text)) {
-    if (text != "model" && text != "wheels" && text != "gyro") r.Fail("heading", "\"" + text + "\" is not model, wheels or gyro");
+    if (!IsHeadingChoice(text)) r.Fail("heading", "\"" + text + "\" is not model, wheels or gyro");
     c->heading = text;
   }
   if (r.String("profile", &text) && text != "vacuum") {
@@ -176,7 +176,7 @@ bool ValidateFirmwareConfig(const FirmwareConfig& c, std::string* error) {
     *error = "laser_offset_m: out of range (-1 .. 1 m)";
   } else if (!in(c.max_accel_mps2, 0.0f, 100.0f)) {
     *error = "max_accel_mps2: out of range (0 .. 100 m/s^2; 0: no limit)";
-  } else if (c.heading != "model" && c.heading != "wheels" && c.heading != "gyro") {
+  } else if (!IsHeadingChoice(c.heading)) {
     *error = "heading: \"" + c.heading + "\" is not model, wheels or gyro";
   } else if (c.map_dir.empty()) {
     *error = "map_dir: empty";

@@ -76,7 +76,7 @@ bool ApplyChoice(const std::string& a, const char* v, dpcr::board::FirmwareConfi
     }
     c->lidar_timing = std::strcmp(v, "device") == 0 ? dpcr::LidarTiming::kDeviceClock : dpcr::LidarTiming::kArrival;
   } else if (a == "--heading") {
-    if (std::strcmp(v, "model") != 0 && std::strcmp(v, "wheels") != 0 && std::strcmp(v, "gyro") != 0) {
+    if (!dpcr::IsHeadingChoice(v)) {
       std::fprintf(stderr, "dpcr-firmware: error: unknown heading '%s' (model, wheels, gyro)\n", v);
       return false;
     }

@@ -52,6 +52,9 @@ inline void ApplyLidarModel(LidarKind kind, LidarConfig* lidar) {
 // gyro frames the wheels' heading is used anyway (FrontEndConfig::gyro_heading).
 inline bool ModelGyroHeading(LidarKind kind) { return kind == LidarKind::kXv11; }
 
+// Whether `choice` names a heading source: model, wheels or gyro.
+inline bool IsHeadingChoice(std::string_view choice) { return choice == "model" || choice == "wheels" || choice == "gyro"; }
+
 // A --heading choice (model, wheels or gyro) for this lidar: whether the gyro's heading is used.
 inline bool GyroHeadingFor(std::string_view choice, LidarKind kind) {
   return choice == "gyro" || (choice == "model" && ModelGyroHeading(kind));

@@ -141,10 +141,10 @@ bool BackEnd::MatchMaps(Span<RegionalMap> regions, int older, int newer) {
   // Posed about the cloud's centroid: a map's cells reach the lidar's range from its anchor
   // (pivot_frame.hpp).
   const Point2 pivot = RecentreOnCentroid(Span<Point2>(s_.cloud.data(), n));
-  RegistrationResult r = RegisterImproved(*s_.reference, Span<const Point2>(s_.cloud.data(), n), PivotPose(measured, pivot),
-                                          nullptr, config_->registration, s_.correspondences);
-  r.pose = FramePose(r.pose, pivot);
-  r.hessian = FrameInformation(r.hessian, r.pose, pivot);
+  const RegistrationResult r =
+      FrameResult(RegisterImproved(*s_.reference, Span<const Point2>(s_.cloud.data(), n), PivotPose(measured, pivot), nullptr,
+                                   config_->registration, s_.correspondences),
+                  pivot);
   if (r.verdict != Status::kOk) return false;
   // Eq. 11 on the thinned cloud: matched points over the mean cloud size, both counted at the
   // thinning of the target (the reference's cells thinned alike).

@@ -802,13 +802,12 @@ RegistrationResult FrontEnd::RegisterSubmap(RegionalMap& r) {
   // clutter included) and cell centres moved onto their refitted lines; both were less accurate.
   const std::size_t count = SubmapTarget();
   if (count == 0) return RegistrationResult{};
-  const Point2 pivot = target_pivot_;
-  const Pose2 initial = PivotPose(r.anchor.Inverse() * submap_pose_, pivot);
+  const Pose2 initial = PivotPose(r.anchor.Inverse() * submap_pose_, target_pivot_);
   const PosePrior prior{initial, f.prior_info_xy, f.prior_info_theta};
-  RegistrationResult res = RegisterImproved(*s_.region_reference, Span<const Point2>(s_.target.data(), count), initial,
-                                            &prior, f.second_registration, s_.correspondences);
-  res.pose = FramePose(res.pose, pivot);
-  res.hessian = FrameInformation(res.hessian, res.pose, pivot);
+  const RegistrationResult res =
+      FrameResult(RegisterImproved(*s_.region_reference, Span<const Point2>(s_.target.data(), count), initial, &prior,
+                                   f.second_registration, s_.correspondences),
+                  target_pivot_);
   ++fe_counters_.second_registrations;
   if (res.verdict == Status::kOk) {
     submap_pose_ = r.anchor * res.pose;  // the submap, and the robot in it, move together

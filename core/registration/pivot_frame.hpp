@@ -14,6 +14,7 @@
 
 #include "core/base/span.hpp"
 #include "core/geometry/pose2.hpp"
+#include "core/registration/plicp.hpp"
 
 namespace dpcr {
 
@@ -31,6 +32,13 @@ inline Pose2 FramePose(const Pose2& pivot_pose, Point2 pivot) {
 // The information of a frame's pose from that of its pivot's (H = Jᵀ H_pivot J, J = d pivot / d
 // frame at `frame_pose`): what a caller that keeps the frame's pose needs.
 Eigen::Matrix3f FrameInformation(const Eigen::Matrix3f& pivot_information, const Pose2& frame_pose, Point2 pivot);
+
+// A registration of the pivot frame, handed back as its frame's: the pose and its information.
+inline RegistrationResult FrameResult(RegistrationResult pivot_result, Point2 pivot) {
+  pivot_result.pose = FramePose(pivot_result.pose, pivot);
+  pivot_result.hessian = FrameInformation(pivot_result.hessian, pivot_result.pose, pivot);
+  return pivot_result;
+}
 
 // A change of a frame's pose (Between(before, after)) as the pivot sees it.
 inline Pose2 ChangeAboutPivot(const Pose2& frame_change, Point2 pivot) {
