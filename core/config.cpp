@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/grid/cell.hpp"
+#include "core/grid/hit_mean.hpp"
 
 namespace dpcr {
 namespace {
@@ -31,7 +32,9 @@ bool GridOk(const GridConfig& g) {
          // The count lives in the values next to a bound (TiledGrid::set_settle_rule): the bands
          // must not meet 0.
          g.unsettle_occupied_after < g.clamp_max && g.unsettle_free_after < -static_cast<int>(g.clamp_min) &&
-         In(g.unsettle_miss_margin_m, 0.0f, 100.0f);
+         In(g.unsettle_miss_margin_m, 0.0f, 100.0f) &&
+         // Hit-mean codes are the values above kHitMeanCodeBase: no clamp may reach them.
+         (!g.hit_means || g.clamp_max < kHitMeanCodeBase);
 }
 
 bool LidarOk(const LidarConfig& l) {

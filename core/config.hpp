@@ -38,6 +38,10 @@ struct GridConfig {
   std::uint8_t unsettle_occupied_after = 0;
   // The same for settled free cells that keep being hit (a door that closed, furniture moved in).
   std::uint8_t unsettle_free_after = 0;
+  // Settled occupied cells of the regional maps learn where in them the returns fall (their hit
+  // means, core/grid/hit_mean.hpp), and the maps' lines are fitted to those positions rather than
+  // to cell centres. Needs settle_at_clamp and clamp_max below kHitMeanCodeBase (4096).
+  bool hit_means = true;
   // A return 2 m or more away that lies behind a settled wall along its own ray, 2 to this many
   // cells behind a settled occupied cell, is range noise carried through the wall (1 cm + 0.5 %
   // of the range on an LD06-class lidar: 5 cm at 8 m) and is dropped (its ray too). Nothing else

@@ -61,7 +61,7 @@ template <class M>
 void ForEachField(M& m, dpcr::MapperConfig& c) {
   dpcr::GridConfig& g = c.grid;
   m(g.resolution_m), m(g.hit_delta), m(g.miss_delta), m(g.clamp_max), m(g.clamp_min), m(g.settle_at_clamp), m(g.hit_margin_m);
-  m(g.unsettle_occupied_after), m(g.unsettle_free_after), m(g.drop_hits_behind_settled_cells), m(g.unsettle_miss_margin_m);
+  m(g.unsettle_occupied_after), m(g.unsettle_free_after), m(g.drop_hits_behind_settled_cells), m(g.unsettle_miss_margin_m), m(g.hit_means);
   dpcr::LidarConfig& l = c.lidar;
   m(l.min_range_m), m(l.max_range_m), m(l.no_return_free_m), m(l.mount), m(l.drop_isolated_returns), m(l.range_noise_m), m(l.smoothing_max_gap_beams),
       m(l.near_weight_range_m), m(l.map_max_turn_rate_rad_s);

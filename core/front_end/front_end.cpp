@@ -41,7 +41,12 @@ Status FrontEnd::Init(const MapperConfig& config) {
     return Status::kInvalidArgument;
   }
   config_ = config;
-  regions_.Reset(config.grid, config.front_end.region_miss_range_m);
+  // Hit means only behind a lidar that declares its range noise: measured to help there (the
+  // simulated LD06 and XV-11), and to hurt intel.clf's loop closures (docs/back-end.md, "Walls
+  // fitted where the returns fell").
+  GridConfig regional = config.grid;
+  regional.hit_means = HitMeans();
+  regions_.Reset(regional, config.front_end.region_miss_range_m);
   s_.submap->Reset(config.grid, config.front_end.submap_scans, config.front_end.submap_miss_range_m);
   status_ = MapperStatus::kWaitingForData;
   counters_ = MapperCounters{};
@@ -914,7 +919,21 @@ std::size_t FrontEnd::SubmapTarget() {
   const std::size_t max_points = static_cast<std::size_t>(config_.front_end.second_registration_max_points);
   const std::size_t stride = (n + max_points - 1) / max_points;
   std::size_t count = 0;
-  for (std::size_t i = 0; i < n; i += stride) s_.target[count++] = sub.CellCentre(static_cast<std::uint16_t>(i));
+  // Against lines fitted to hit means, a wall's cells are taken where its line runs (the submap's
+  // lines are refitted to raw points): a cell centre is up to half a cell off the wall, and the
+  // maps' lines no longer share that error (docs/back-end.md, "Walls fitted where the returns fell").
+  const bool onto_lines = HitMeans();
+  for (std::size_t i = 0; i < n; i += stride) {
+    const std::uint16_t k = static_cast<std::uint16_t>(i);
+    Point2 p = sub.ObstaclePoint(k);
+    const std::uint16_t line = sub.cell(k).line;
+    if (onto_lines && line != kNoLine) {
+      const LineFeature& l = sub.line(line);
+      const float d = l.normal.x * p.x + l.normal.y * p.y - l.offset;
+      p = Point2{p.x - d * l.normal.x, p.y - d * l.normal.y};
+    }
+    s_.target[count++] = p;
+  }
   // Registered about their centroid, not the submap frame's far origin (pivot_frame.hpp).
   target_pivot_ = RecentreOnCentroid(Span<Point2>(s_.target.data(), count));
   return count;

@@ -203,6 +203,9 @@ class FrontEnd {
   bool InsertIntoMaps(const ProjectedScan& projected, const Pose2& world, bool keep_out, bool turning);
   // The last scan-to-scan motion turned faster than LidarConfig::map_max_turn_rate_rad_s.
   bool TurningFast() const;
+  // Whether the regional maps keep hit means (GridConfig::hit_means): only behind a lidar that
+  // declares its range noise (FrontEnd::Init).
+  bool HitMeans() const { return config_.grid.hit_means && config_.lidar.range_noise_m > 0.0f; }
   // An empty scan, or a sparse one while the submap is empty (FrontEndConfig::min_start_hits):
   // the pose is the prediction and the scan goes nowhere (counted). True when skipped.
   bool SkipScan(const ProjectedScan& projected, const Pose2& predicted);

@@ -39,6 +39,7 @@ RegionSet::Entry RegionSet::Enter(RegionKey key, Point2 centre) {
   const int half = r.grid->tiles_x() / 2;
   r.grid->set_resolution_m(grid_.resolution_m);
   r.grid->set_settle_rule(grid_.settle_at_clamp, grid_.unsettle_occupied_after, grid_.unsettle_free_after);
+  r.grid->set_hit_means(grid_.hit_means && grid_.settle_at_clamp ? grid_.clamp_max : std::int16_t{0});
   r.grid->Reset(CellIndex{-half, -half});
   previous_ = current_;
   current_ = size_++;
@@ -56,6 +57,7 @@ RegionalMap* RegionSet::Restore(RegionKey key, const Pose2& anchor, std::uint32_
   const int half = r.grid->tiles_x() / 2;
   r.grid->set_resolution_m(grid_.resolution_m);
   r.grid->set_settle_rule(grid_.settle_at_clamp, grid_.unsettle_occupied_after, grid_.unsettle_free_after);
+  r.grid->set_hit_means(grid_.hit_means && grid_.settle_at_clamp ? grid_.clamp_max : std::int16_t{0});
   r.grid->Reset(CellIndex{-half, -half});
   return &r;
 }
@@ -92,6 +94,7 @@ InsertionStats RegionSet::InsertScan(const Pose2& robot, Span<Point2> hits, Span
   const InsertionStats st = InsertRays(*r.grid, Point2{to_region.x, to_region.y}, Span<const Point2>(hits.data(), hits.size()),
                                        Span<const Point2>(free_ends.data(), free_ends.size()), learning, marker, scratch_,
                                        miss_range_m_);
+  r.grid->AddHitMeans(Span<const Point2>(hits.data(), hits.size()), marker);
   ++r.scans_inserted;
   if (st.dropped_pool_full > 0) pool_full_ = true;
   return st;

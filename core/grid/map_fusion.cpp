@@ -89,10 +89,11 @@ Status FuseInto(Span<const PlacedGrid> grids, CellBox box, float res, std::int16
     o = static_cast<std::int16_t>(std::clamp(sum, static_cast<int>(clamp_min), static_cast<int>(clamp_max)));
   };
   for (const PlacedGrid& g : grids) {
+    const auto add_log_odds = [&](CellIndex c, std::int16_t v) { add(c, g.grid->LogOdds(v)); };  // hit means too
     if (OnLattice(g.anchor, res)) {
-      FuseOnLattice(g, box, res, add);
+      FuseOnLattice(g, box, res, add_log_odds);
     } else {
-      FuseResampled(g, box, res, add);
+      FuseResampled(g, box, res, add_log_odds);
     }
   }
   return Status::kOk;

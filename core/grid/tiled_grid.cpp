@@ -90,6 +90,9 @@ struct TiledGrid::Learning {
   // bound or cannot unsettle it. The walk's first test (most visits of a regional map end there).
   std::int32_t quiet_a;
   std::int32_t quiet_b;
+  // Values above it are left as they are too: hit-mean codes, unless this update may count
+  // against them (INT32_MAX then, or when the grid holds no codes).
+  std::int32_t quiet_code;
 };
 
 TiledGrid::Learning TiledGrid::LearningOf(std::int16_t delta, std::int16_t lo, std::int16_t hi, bool may_unsettle) const {
@@ -106,6 +109,7 @@ TiledGrid::Learning TiledGrid::LearningOf(std::int16_t delta, std::int16_t lo, s
   l.quiet_a = up ? hi : lo;
   const std::int32_t contrary_after = up ? l.free_after : l.occupied_after;
   l.quiet_b = contrary_after == 0 ? (up ? lo : hi) : l.quiet_a;
+  l.quiet_code = hit_means_settled_ != 0 && (up || l.occupied_after == 0) ? hi : INT32_MAX;
   return l;
 }
 
@@ -128,6 +132,12 @@ inline std::int32_t Learnt(std::int32_t v, const TiledGrid::Learning& l) {
 // cell learn again from the band's edge.
 inline std::int32_t SettledValue(std::int32_t old, const TiledGrid::Learning& l) {
   if (old != kUnknownCell) {
+    // Above hi: a hit mean, a cell settled at hi. It keeps its code, unless a contrary scan
+    // starts its count (the mean is dropped then).
+    if (old > l.hi) {
+      if (l.delta >= 0 || l.occupied_after == 0) return old;
+      old = l.hi;
+    }
     if (old >= l.hi_bottom) {
       if (l.delta >= 0) return l.hi;
       if (l.occupied_after == 0) return old;
@@ -168,7 +178,7 @@ template <bool kStamped, bool kSettle>
 inline void UpdateCell(Tile* tile, std::ptrdiff_t i, const TiledGrid::Learning& l) {
   std::int16_t* cell = &tile->cells[i];
   const std::int32_t old = *cell;
-  if (kSettle && (old == l.quiet_a || old == l.quiet_b)) return;
+  if (kSettle && (old == l.quiet_a || old == l.quiet_b || old > l.quiet_code)) return;
   if (kStamped) {
     const std::uint32_t bit = 1u << (i & 31), word = tile->updated[i >> 5];
     if ((word & bit) != 0) return;
@@ -388,6 +398,29 @@ TiledGrid::SegmentStats TiledGrid::UpdateCells(Span<const CellIndex> cells, std:
     }
   }
   return st;
+}
+
+void TiledGrid::AddHitMeans(Span<const Point2> hits, std::uint32_t seed) {
+  if (hit_means_settled_ == 0 || !settle_at_bounds_) return;
+  const float inv_res = 1.0f / resolution_m_;
+  std::uint32_t index = 0;
+  for (const Point2& p : hits) {
+    ++index;
+    const float gx = p.x * inv_res, gy = p.y * inv_res;
+    const CellIndex c{FloorToInt(gx), FloorToInt(gy)};
+    int offset = 0;
+    const int slot = SlotOf(c, &offset);
+    if (slot < 0) continue;
+    const TileId id = index_[static_cast<std::size_t>(slot)];
+    if (id == kNoTile) continue;
+    std::int16_t& v = (*pool_)[id].cells[offset];
+    const float fx = gx - static_cast<float>(c.x), fy = gy - static_cast<float>(c.y);
+    if (v == hit_means_settled_) {
+      v = EncodeHitMean(StartHitMean(fx, fy));
+    } else if (IsHitMeanCode(v)) {
+      v = EncodeHitMean(UpdateHitMean(DecodeHitMean(v), fx, fy, HitMeanHash(seed * 0x9e3779b9U ^ index)));
+    }
+  }
 }
 
 Status TiledGrid::Update(CellIndex c, std::int16_t delta, std::int16_t lo, std::int16_t hi,

@@ -6,8 +6,10 @@
 #include <cstdint>
 
 #include "core/grid/cell.hpp"
+#include "core/grid/hit_mean.hpp"
 #include "core/base/span.hpp"
 #include "core/base/status.hpp"
+#include "core/geometry/pose2.hpp"
 #include "core/grid/tile_pool.hpp"
 
 namespace dpcr {
@@ -72,6 +74,20 @@ class TiledGrid {
   }
   std::uint8_t unsettle_free_after() const { return unsettle_free_after_; }
 
+  // Hit means (core/grid/hit_mean.hpp): a cell settled at the upper bound `settled` learns where in
+  // it the returns fall, in codes above the bound. 0: off. Needs set_settle_at_bounds(true).
+  void set_hit_means(std::int16_t settled) { hit_means_settled_ = settled; }
+  std::int16_t hit_means_settled() const { return hit_means_settled_; }
+  // Whether cell value `v` is a hit-mean code (in a grid without hit means, such as the submap's
+  // unclamped sums, values above the base are log-odds).
+  bool HasHitMean(std::int16_t v) const { return hit_means_settled_ != 0 && IsHitMeanCode(v); }
+  // A cell value as log-odds: a hit-mean code reads as the bound it settled at.
+  std::int16_t LogOdds(std::int16_t v) const { return HasHitMean(v) ? hit_means_settled_ : v; }
+  // Adds each return (grid frame, metres) to the hit mean of the cell it falls in, if that cell is
+  // settled occupied (one that has just settled starts its mean). `seed` (the scan's stamp) and the
+  // return's index make the rounding's randomness. Nothing when hit means are off.
+  void AddHitMeans(Span<const Point2> hits, std::uint32_t seed);
+
   // kUnknownCell outside the box or in a tile never written. Inline: insertion screens its hits
   // with it (InsertRays).
   std::int16_t Get(CellIndex c) const {
@@ -119,7 +135,7 @@ class TiledGrid {
   CellIndex origin_tile() const { return origin_tile_; }
   // The tile at box slot (tx, ty), or kNoTile.
   TileId tile_at(int tx, int ty) const { return index_[static_cast<std::size_t>(ty * tiles_x_ + tx)]; }
-  std::size_t allocated_tiles() const { return allocated_tiles_; }
+  std::size_t allocated_tiles() const { return static_cast<std::size_t>(allocated_tiles_); }
   // Loading a saved map (core/persistence): takes a tile from the pool for box slot (tx, ty) and
   // returns its cells (all unknown) to fill; empty when the slot is outside the box or already
   // holds a tile, or the pool is exhausted.
@@ -166,7 +182,8 @@ class TiledGrid {
   bool settle_at_bounds_ = false;
   std::uint8_t unsettle_occupied_after_ = 0;
   std::uint8_t unsettle_free_after_ = 0;
-  std::size_t allocated_tiles_ = 0;
+  std::int16_t hit_means_settled_ = 0;
+  std::int32_t allocated_tiles_ = 0;  // int32, not size_t: the grid's fields fit where they did
 };
 
 // Calls visit(cells, corner) for each tile the grid holds: its kTileSide x kTileSide cells

@@ -180,11 +180,12 @@ MapFileError CheckMapFits(const MapFileHeader& h, const MapFileLimits& l) {
   return same_grid ? MapFileError::kNone : MapFileError::kConfigMismatch;
 }
 
-TileToken NextTileToken(const std::int16_t* cells, int i, std::int16_t clamp_min, std::int16_t clamp_max) {
-  const std::int16_t v = cells[i];
+TileToken NextTileToken(const std::int16_t* raw, int i, std::int16_t clamp_min, std::int16_t clamp_max) {
+  const auto cells = [&](int j) { return MapFileValue(raw[j], clamp_max); };
+  const std::int16_t v = cells(i);
   const auto run_of = [&](int j, int most) {
     int n = 1;
-    while (n < most && j + n < kTileCells && cells[j + n] == cells[j]) ++n;
+    while (n < most && j + n < kTileCells && cells(j + n) == cells(j)) ++n;
     return n;
   };
   TileToken t;
@@ -204,9 +205,9 @@ TileToken NextTileToken(const std::int16_t* cells, int i, std::int16_t clamp_min
   // Literals: up to the next special value or the next run of two.
   int n = 1;
   while (n < 32 && i + n < kTileCells) {
-    const std::int16_t w = cells[i + n];
+    const std::int16_t w = cells(i + n);
     if (w == kUnknownCell || w == clamp_min || w == clamp_max) break;
-    if (i + n + 1 < kTileCells && cells[i + n + 1] == w) break;
+    if (i + n + 1 < kTileCells && cells(i + n + 1) == w) break;
     ++n;
   }
   t.cells = t.values = n;

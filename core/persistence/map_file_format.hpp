@@ -147,7 +147,10 @@ struct TileToken {
   int cells = 0;          // cells it covers
   int values = 0;         // int16 values that follow it (0, 1 or cells)
 };
-// The token that codes the cells from `i` on (i < kTileCells).
+// A cell as the file stores it: a hit mean (core/grid/hit_mean.hpp) as the clamp it settled at.
+// The file keeps the log-odds only; a loaded map's walls learn their hit means again.
+inline std::int16_t MapFileValue(std::int16_t v, std::int16_t clamp_max) { return v > clamp_max ? clamp_max : v; }
+// The token that codes the cells from `i` on (i < kTileCells); hit means coded as MapFileValue.
 TileToken NextTileToken(const std::int16_t* cells, int i, std::int16_t clamp_min, std::int16_t clamp_max);
 // Bytes of the run encoding of a tile.
 std::size_t TileRunBytes(const std::int16_t* cells, std::int16_t clamp_min, std::int16_t clamp_max);

@@ -62,13 +62,13 @@ void WriteTile(ChunkWriter& w, int tx, int ty, const std::int16_t* cells, const 
   w.Put(head, sizeof(head));
   w.PutU16(static_cast<std::uint16_t>(bytes));
   if (encoding == TileEncoding::kRaw) {
-    for (int i = 0; i < kTileCells; ++i) w.PutU16(static_cast<std::uint16_t>(cells[i]));
+    for (int i = 0; i < kTileCells; ++i) w.PutU16(static_cast<std::uint16_t>(MapFileValue(cells[i], l.clamp_max)));
     return;
   }
   for (int i = 0; i < kTileCells;) {
     const TileToken t = NextTileToken(cells, i, l.clamp_min, l.clamp_max);
     w.Put(&t.code, 1);
-    for (int k = 0; k < t.values; ++k) w.PutU16(static_cast<std::uint16_t>(cells[i + k]));
+    for (int k = 0; k < t.values; ++k) w.PutU16(static_cast<std::uint16_t>(MapFileValue(cells[i + k], l.clamp_max)));
     i += t.cells;
   }
 }

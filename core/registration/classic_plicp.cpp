@@ -8,7 +8,7 @@ namespace {
 bool FindTwoNearest(const RegistrationReference& ref, Point2 w, const PlicpConfig& /*config*/, Correspondence* out) {
   const std::uint16_t j = ref.Nearest(w);
   if (j == kNoCell) return false;
-  const Point2 q1 = ref.CellCentre(j);
+  const Point2 q1 = ref.ObstaclePoint(j);
   const ObstacleCell& c1 = ref.cell(j);
   float best = 1e30f;
   Point2 q2{};
@@ -17,7 +17,7 @@ bool FindTwoNearest(const RegistrationReference& ref, Point2 w, const PlicpConfi
       if (dx == 0 && dy == 0) continue;
       const std::uint16_t k = ref.ObstacleAt(c1.x + dx, c1.y + dy);
       if (k == kNoCell) continue;
-      const Point2 q = ref.CellCentre(k);
+      const Point2 q = ref.ObstaclePoint(k);
       const float d2 = (q.x - w.x) * (q.x - w.x) + (q.y - w.y) * (q.y - w.y);
       if (d2 < best) best = d2, q2 = q;
     }

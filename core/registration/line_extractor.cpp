@@ -9,12 +9,11 @@ namespace {
 
 constexpr int kSplitStack = 64;
 
+
 struct Range {
   std::uint32_t lo;
   std::uint32_t hi;
 };
-
-Point2 Centre(const ObstacleCell& c) { return Point2{c.x + 0.5f, c.y + 0.5f}; }
 
 // Total least squares from central moments: the normal is the minor eigenvector, and the minor
 // eigenvalue is the mean squared perpendicular distance.
@@ -32,7 +31,7 @@ LineFeature Moments(Span<ObstacleCell> cells, const std::uint16_t* perm, Range r
   LineFeature l;
   for (std::uint32_t i = r.lo; i < r.hi; ++i) {
     const ObstacleCell& c = cells[perm[i]];
-    const Point2 p = Centre(c);
+    const Point2 p = ObstaclePosition(c);
     const float w = c.weight;
     l.mass += w;
     l.mean.x += w * p.x;
@@ -42,7 +41,7 @@ LineFeature Moments(Span<ObstacleCell> cells, const std::uint16_t* perm, Range r
   l.mean.y /= l.mass;
   for (std::uint32_t i = r.lo; i < r.hi; ++i) {
     const ObstacleCell& c = cells[perm[i]];
-    const Point2 p = Centre(c);
+    const Point2 p = ObstaclePosition(c);
     const float w = c.weight;
     const float dx = p.x - l.mean.x, dy = p.y - l.mean.y;
     l.cxx += w * dx * dx;
@@ -71,7 +70,7 @@ template <typename Pred>
 std::uint32_t Partition(std::uint16_t* perm, Range r, Span<ObstacleCell> cells, Pred left) {
   std::uint32_t mid = r.lo;
   for (std::uint32_t i = r.lo; i < r.hi; ++i) {
-    if (left(Centre(cells[perm[i]]))) {
+    if (left(ObstaclePosition(cells[perm[i]]))) {
       const std::uint16_t t = perm[i];
       perm[i] = perm[mid];
       perm[mid++] = t;
@@ -88,7 +87,7 @@ bool Split(Span<ObstacleCell> cells, std::uint16_t* perm, Range r, const LineFea
   Point2 a{}, b{};
   float tmin = 1e30f, tmax = -1e30f;
   for (std::uint32_t i = r.lo; i < r.hi; ++i) {
-    const Point2 p = Centre(cells[perm[i]]);
+    const Point2 p = ObstaclePosition(cells[perm[i]]);
     const float t = d.x * p.x + d.y * p.y;
     if (t < tmin) tmin = t, a = p;
     if (t > tmax) tmax = t, b = p;
@@ -96,7 +95,7 @@ bool Split(Span<ObstacleCell> cells, std::uint16_t* perm, Range r, const LineFea
   Point2 f{};
   float best = -1.0f;
   for (std::uint32_t i = r.lo; i < r.hi; ++i) {
-    const Point2 p = Centre(cells[perm[i]]);
+    const Point2 p = ObstaclePosition(cells[perm[i]]);
     const float dist = DistanceToSegment(p, a, b);
     if (dist > best) best = dist, f = p;
   }
@@ -222,7 +221,7 @@ Range CollectComponent(Span<ObstacleCell> cells, const std::uint16_t* cell_at, i
 float MaxDeviation(Span<ObstacleCell> cells, const std::uint16_t* perm, Range r, const LineFeature& fit) {
   float dev = 0.0f;
   for (std::uint32_t i = r.lo; i < r.hi; ++i) {
-    const Point2 p = Centre(cells[perm[i]]);
+    const Point2 p = ObstaclePosition(cells[perm[i]]);
     dev = std::fmax(dev, std::fabs(fit.normal.x * p.x + fit.normal.y * p.y - fit.offset));
   }
   return dev;
@@ -235,7 +234,7 @@ LineFeature LeafLine(Span<ObstacleCell> cells, const std::uint16_t* perm, Range 
   const Point2 d{l.normal.y, -l.normal.x};
   float tmin = 1e30f, tmax = -1e30f;
   for (std::uint32_t i = r.lo; i < r.hi; ++i) {
-    const Point2 p = Centre(cells[perm[i]]);
+    const Point2 p = ObstaclePosition(cells[perm[i]]);
     const float t = d.x * (p.x - l.mean.x) + d.y * (p.y - l.mean.y);
     tmin = std::fmin(tmin, t);
     tmax = std::fmax(tmax, t);

@@ -22,15 +22,33 @@ constexpr std::uint16_t kNoCell = 0xFFFF;
 constexpr std::uint16_t kNoLine = 0xFFFF;
 
 struct ObstacleCell {
-  std::int16_t x = 0;  // window-local cell coordinates
-  std::int16_t y = 0;
+  // Window-local cell coordinates (windows up to 1024 cells a side), and where in the cell the
+  // obstacle lies, in 1/64 cell: the centre (32) unless the grid knew its returns' mean
+  // (core/grid/hit_mean.hpp). Packed: the cell stays 10 bytes.
+  std::uint16_t x : 10;
+  std::uint16_t sub_x : 6;
+  std::uint16_t y : 10;
+  std::uint16_t sub_y : 6;
   std::uint16_t line = kNoLine;  // owning line feature, kNoLine for clutter
   std::int8_t nx = 0;            // local unit normal * 127 from the 5x5 neighbourhood; (0, 0) = none
   std::int8_t ny = 0;
   // Weight in the line fits: the cell's evidence (log-odds), so that the solid core of a wall
   // steers a line and the cells that range noise reaches now and then barely do.
   std::uint16_t weight = 1;
+
+  ObstacleCell() : x(0), sub_x(kCentre), y(0), sub_y(kCentre) {}
+  static constexpr int kSubCells = 64;
+  static constexpr int kCentre = kSubCells / 2;
+  static constexpr int kMaxSide = 1024;
 };
+static_assert(sizeof(ObstacleCell) == 10, "an obstacle cell is 10 bytes");
+
+// Where in the window (cell units) the obstacle of cell `c` lies: its centre, or its hit mean.
+inline Point2 ObstaclePosition(const ObstacleCell& c) {
+  constexpr float kStep = 1.0f / static_cast<float>(ObstacleCell::kSubCells);
+  return Point2{static_cast<float>(c.x) + static_cast<float>(c.sub_x) * kStep,
+                static_cast<float>(c.y) + static_cast<float>(c.sub_y) * kStep};
+}
 
 struct LineFeature {
   Point2 a;              // endpoints: extreme cells' outer edges projected on the fitted line

@@ -244,7 +244,7 @@ struct FindLineFeature {
     if (j == kNoCell) return false;
     const ObstacleCell& cell = ref.cell(j);
     out->ref = j;
-    out->q = ref.CellCentre(j);
+    out->q = ref.ObstaclePoint(j);
     if (cell.line != kNoLine) {  // the paper's term: distance to the owning line feature
       const LineFeature& l = ref.line(cell.line);
       out->normal = l.normal;

@@ -92,6 +92,15 @@ void RegistrationReference::BeginBuild(CellBox window, float resolution_m) {
   blocks_x_ = (w_ + 7) >> kBlockShift;
 }
 
+std::uint16_t RegistrationReference::EvidenceWeight(const TiledGrid& grid, std::int16_t v, const ReferenceConfig& config) {
+  if (!config.weight_by_evidence) return 1;
+  // Q10 log-odds / 64: up to 511 for an unclamped submap sum, 57 at the regional clamp.
+  const int w = 1 + (grid.LogOdds(v) >> 6);
+  // A hit mean holds about 2^k returns (its class): the cells that range noise reaches now and
+  // then, beside a wall's core, weigh that much less in its line (at most 57 x 64).
+  return static_cast<std::uint16_t>(grid.HasHitMean(v) ? w << (DecodeHitMean(v).k - 1) : w);
+}
+
 void RegistrationReference::AddGrid(const TiledGrid& grid, CellIndex offset, const ReferenceConfig& config,
                                     ReferenceBuildStats* stats) {
   // 1. Obstacle cells, tile by tile: only allocated tiles cost anything.
@@ -119,9 +128,7 @@ void RegistrationReference::AddGrid(const TiledGrid& grid, CellIndex offset, con
           const int x = x0 + lx;
           const std::int16_t v = row[lx];
           if (v <= config.obstacle_threshold) continue;  // kUnknownCell included
-          // Q10 log-odds / 64: up to 511 for an unclamped submap sum, 56 at the regional clamp.
-          const std::uint16_t weight = config.weight_by_evidence ? static_cast<std::uint16_t>(1 + (v >> 6)) : 1;
-          AddObstacleCell(x, y, weight, stats);
+          AddObstacleCell(x, y, EvidenceWeight(grid, v, config), grid.HasHitMean(v) ? SubCellOf(v) : SubCell{}, stats);
         }
       }
     }
@@ -129,10 +136,14 @@ void RegistrationReference::AddGrid(const TiledGrid& grid, CellIndex offset, con
   stats->obstacle_cells = static_cast<int>(cell_count_);
 }
 
-void RegistrationReference::AddObstacleCell(int x, int y, std::uint16_t weight, ReferenceBuildStats* stats) {
+void RegistrationReference::AddObstacleCell(int x, int y, std::uint16_t weight, SubCell sub, ReferenceBuildStats* stats) {
   std::uint16_t& entry = nearest_[static_cast<std::size_t>(y * w_ + x)];
   if (entry != kNotSearched) {  // already an obstacle cell of an earlier grid: one cell, the larger weight
-    if (weight > cells_[entry].weight) cells_[entry].weight = weight;
+    if (weight > cells_[entry].weight) {
+      cells_[entry].weight = weight;
+      cells_[entry].sub_x = sub.x & 63u;
+      cells_[entry].sub_y = sub.y & 63u;
+    }
     return;
   }
   if (cell_count_ == cells_.size()) {
@@ -141,8 +152,10 @@ void RegistrationReference::AddObstacleCell(int x, int y, std::uint16_t weight, 
   }
   ObstacleCell& c = cells_[cell_count_];
   c = ObstacleCell{};
-  c.x = static_cast<std::int16_t>(x);
-  c.y = static_cast<std::int16_t>(y);
+  c.x = static_cast<std::uint16_t>(x) & 1023u;
+  c.y = static_cast<std::uint16_t>(y) & 1023u;
+  c.sub_x = sub.x & 63u;
+  c.sub_y = sub.y & 63u;
   c.weight = weight;
   entry = static_cast<std::uint16_t>(cell_count_++);
   written_blocks_[y >> kBlockShift] |= std::uint64_t{1} << (x >> kBlockShift);
@@ -160,14 +173,22 @@ void RegistrationReference::AddPlacedGrid(const TiledGrid& grid, const Pose2& gr
     AddGrid(grid, CellIndex{static_cast<std::int32_t>(rx), static_cast<std::int32_t>(ry)}, config, stats);
     return;
   }
-  // Otherwise each obstacle cell's centre is carried into the window's frame and lands in the
-  // cell containing it (a rotated map's walls stay one cell thick, at most half a cell off).
+  // Otherwise each obstacle cell's obstacle (its hit mean, or its centre) is carried into the
+  // window's frame and lands in the cell containing it (a rotated map's walls stay one cell
+  // thick): at the same place in that cell where the grid has hit means, at its centre otherwise.
   const PointTransform to_window(grid_in_window);
   ForEachCellAbove(grid, config.obstacle_threshold, [&](CellIndex local, std::int16_t v) {
-    const Point2 p = to_window(Point2{CellCentreX(local, res_), CellCentreY(local, res_)});
-    const int x = FloorToInt(p.x * inv_res_) - window_min_.x, y = FloorToInt(p.y * inv_res_) - window_min_.y;
+    float ox = 0.5f, oy = 0.5f;
+    ObstacleOffsetInCell(v, grid.HasHitMean(v), &ox, &oy);
+    const Point2 p = to_window(Point2{(static_cast<float>(local.x) + ox) * res_, (static_cast<float>(local.y) + oy) * res_});
+    const float gx = p.x * inv_res_, gy = p.y * inv_res_;
+    const int cx = FloorToInt(gx), cy = FloorToInt(gy);
+    const int x = cx - window_min_.x, y = cy - window_min_.y;
     if (x < 0 || y < 0 || x >= w_ || y >= h_) return;
-    AddObstacleCell(x, y, config.weight_by_evidence ? static_cast<std::uint16_t>(1 + (v >> 6)) : 1, stats);
+    const SubCell sub = grid.hit_means_settled() != 0 ? SubCell{static_cast<std::uint16_t>(HitMeanLevel(gx - static_cast<float>(cx))),
+                                                                static_cast<std::uint16_t>(HitMeanLevel(gy - static_cast<float>(cy)))}
+                                                       : SubCell{};
+    AddObstacleCell(x, y, EvidenceWeight(grid, v, config), sub, stats);
   });
   stats->obstacle_cells = static_cast<int>(cell_count_);
 }

@@ -95,9 +95,10 @@ class RegistrationReference {
   }
   std::size_t table_bytes() const { return nearest_.size() * sizeof(std::uint16_t); }
 
-  // World position of an obstacle cell's centre.
-  Point2 CellCentre(std::uint16_t i) const {
-    return Point2{origin_.x + (cells_[i].x + 0.5f) * res_, origin_.y + (cells_[i].y + 0.5f) * res_};
+  // World position of an obstacle cell's obstacle: its hit mean if the grid had one, else its centre.
+  Point2 ObstaclePoint(std::uint16_t i) const {
+    const Point2 p = ObstaclePosition(cells_[i]);
+    return Point2{origin_.x + p.x * res_, origin_.y + p.y * res_};
   }
   const ObstacleCell& cell(std::uint16_t i) const { return cells_[i]; }
   std::size_t cell_count() const { return cell_count_; }
@@ -125,7 +126,18 @@ class RegistrationReference {
   // Resets what the last build and its searches wrote: table entries, obstacle blocks.
   void ClearWritten();
   // Window cell (x, y) becomes an obstacle cell (or keeps the larger weight if it is one).
-  inline void AddObstacleCell(int x, int y, std::uint16_t weight, ReferenceBuildStats* stats);
+  // Where in the cell its obstacle lies (ObstacleCell::sub_x, sub_y): the centre, or a hit mean.
+  struct SubCell {
+    std::uint16_t x = ObstacleCell::kCentre;
+    std::uint16_t y = ObstacleCell::kCentre;
+  };
+  static SubCell SubCellOf(std::int16_t code) {  // a hit-mean code
+    const HitMean m = DecodeHitMean(code);
+    return SubCell{static_cast<std::uint16_t>(m.qx), static_cast<std::uint16_t>(m.qy)};
+  }
+  inline void AddObstacleCell(int x, int y, std::uint16_t weight, SubCell sub, ReferenceBuildStats* stats);
+  // ObstacleCell::weight of a cell of `grid` with value `v`.
+  static std::uint16_t EvidenceWeight(const TiledGrid& grid, std::int16_t v, const ReferenceConfig& config);
 
   Span<ObstacleCell> cells_;
   // A cache that Search fills, also through a const reference (queries are single-threaded).
@@ -157,6 +169,7 @@ template <int kW, int kH, int kCells, int kLines, bool kPointRefit = true>
 class RegistrationReferenceStorage : public RegistrationReference {
   static_assert(kCells < 0xFFFE, "cell ids are 16-bit below the table's two markers (kNoneNear, kNotSearched)");
   static_assert(kLines < 0xFFFE, "line ids are 16-bit below the line extractor's two markers");
+  static_assert(kW <= ObstacleCell::kMaxSide && kH <= ObstacleCell::kMaxSide, "obstacle cells hold 10-bit coordinates");
   static constexpr int kBlocks = ((kW + 7) / 8) * ((kH + 7) / 8);
   static constexpr int kScratch = kCells + 2 * kLines;  // ExtractLines: cells, then lines twice
 

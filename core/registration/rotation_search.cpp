@@ -18,9 +18,9 @@ void CoarseScoreGrid::Build(const RegistrationReference& ref, const PoseSearchCo
   res_ = config.resolution_m;
   const std::size_t n = ref.cell_count();
   if (n == 0) return;
-  Point2 lo = ref.CellCentre(0), hi = lo;
+  Point2 lo = ref.ObstaclePoint(0), hi = lo;
   for (std::size_t i = 1; i < n; ++i) {
-    const Point2 c = ref.CellCentre(static_cast<std::uint16_t>(i));
+    const Point2 c = ref.ObstaclePoint(static_cast<std::uint16_t>(i));
     lo.x = std::fmin(lo.x, c.x), lo.y = std::fmin(lo.y, c.y);
     hi.x = std::fmax(hi.x, c.x), hi.y = std::fmax(hi.y, c.y);
   }
@@ -46,7 +46,7 @@ void CoarseScoreGrid::Build(const RegistrationReference& ref, const PoseSearchCo
   }
   const float inv = 1.0f / res_;
   for (std::size_t i = 0; i < n; ++i) {
-    const Point2 c = ref.CellCentre(static_cast<std::uint16_t>(i));
+    const Point2 c = ref.ObstaclePoint(static_cast<std::uint16_t>(i));
     const float fx = (c.x - origin_.x) * inv, fy = (c.y - origin_.y) * inv;
     const int x = FloorCell(fx), y = FloorCell(fy);
     const int y0 = y - radius < 0 ? 0 : y - radius, y1 = y + radius >= h_ ? h_ - 1 : y + radius;

@@ -63,7 +63,7 @@ TEST_CASE("A rectangular room yields its four walls with endpoints within one ce
     const std::uint16_t id = f.ref->cell(i).line;
     REQUIRE(id != dpcr::kNoLine);
     const dpcr::LineFeature& l = f.ref->line(id);
-    const Point2 p = f.ref->CellCentre(i);
+    const Point2 p = f.ref->ObstaclePoint(i);
     CHECK(std::fabs(l.normal.x * p.x + l.normal.y * p.y - l.offset) <= kCell);
   }
 }
@@ -121,13 +121,13 @@ TEST_CASE("The nearest-obstacle table answers the true nearest cell within its b
     const Point2 p{u(rng), u(rng)};
     const Point2 centre{(std::floor(p.x / kCell) + 0.5f) * kCell, (std::floor(p.y / kCell) + 0.5f) * kCell};
     float best = 1e9f;
-    for (std::uint16_t i = 0; i < f.ref->cell_count(); ++i) best = std::fmin(best, Dist(centre, f.ref->CellCentre(i)));
+    for (std::uint16_t i = 0; i < f.ref->cell_count(); ++i) best = std::fmin(best, Dist(centre, f.ref->ObstaclePoint(i)));
     const std::uint16_t got = f.ref->Nearest(p);
     if (best > 1.0f + kCell) {
       CHECK(got == dpcr::kNoCell);
     } else if (best < 1.0f - kCell) {
       REQUIRE(got != dpcr::kNoCell);
-      CHECK(Dist(centre, f.ref->CellCentre(got)) <= best + 1e-4f);
+      CHECK(Dist(centre, f.ref->ObstaclePoint(got)) <= best + 1e-4f);
     }
   }
 }

@@ -100,7 +100,7 @@ TEST_CASE("A cloud whose frame lies 25 m away turns as far as its points say onl
   REQUIRE(map.Build() == dpcr::Status::kOk);
   const Pose2 frame_truth{-21.0f, -14.0f, 0.2f};  // the cloud's frame in the map
   std::vector<Point2> cloud;
-  for (std::uint16_t i = 0; i < map.ref->cell_count(); i += 2) cloud.push_back(frame_truth.Inverse().Apply(map.ref->CellCentre(i)));
+  for (std::uint16_t i = 0; i < map.ref->cell_count(); i += 2) cloud.push_back(frame_truth.Inverse().Apply(map.ref->ObstaclePoint(i)));
   REQUIRE(cloud.size() > 100);
   std::vector<Point2> centred = cloud;
   const Point2 pivot = dpcr::RecentreOnCentroid(dpcr::Span<Point2>(centred.data(), centred.size()));

@@ -227,7 +227,7 @@ TEST_CASE("Second registration: obstacle cells of one grid against the lines of 
   REQUIRE(a.Build() == dpcr::Status::kOk);
   REQUIRE(b.Build() == dpcr::Status::kOk);
   std::vector<Point2> cells;
-  for (std::uint16_t i = 0; i < b.ref->cell_count(); ++i) cells.push_back(b.ref->CellCentre(i));
+  for (std::uint16_t i = 0; i < b.ref->cell_count(); ++i) cells.push_back(b.ref->ObstaclePoint(i));
   REQUIRE(cells.size() > 200);
   const Pose2 start{0.0f, 0.0f, 0.0f};  // the drift estimate before the second registration
   const auto r = dpcr::RegisterImproved(*a.ref, SpanOf(cells), start, nullptr, dpcr::PlicpConfig{});

@@ -44,7 +44,7 @@ bool WriteRegistrationFigure(const std::string& path, const dpcr::TiledGrid& gri
   for (std::uint16_t i = 0; i < ref.cell_count(); ++i) {  // clutter cells (no line): blue
     if (ref.cell(i).line != dpcr::kNoLine) continue;
     int x, y;
-    px(ref.CellCentre(i), &x, &y);
+    px(ref.ObstaclePoint(i), &x, &y);
     for (int k = 0; k < 4; ++k) img.Set(x + k % 2, y + k / 2, 40, 90, 230);
   }
   for (std::uint16_t i = 0; i < ref.line_count(); ++i) {  // line features: red
