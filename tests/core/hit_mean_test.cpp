@@ -12,7 +12,9 @@
 #include "core/grid/map_fusion.hpp"
 #include "core/grid/tiled_grid.hpp"
 #include "core/persistence/map_file_format.hpp"
+#include "core/persistence/map_reader.hpp"
 #include "registration_fixtures.hpp"
+#include "tests/core/map_file_fixtures.hpp"
 
 using dpcr::CellIndex;
 using dpcr::Point2;
@@ -217,4 +219,53 @@ TEST_CASE("Hit means need a clamp below the codes") {
   CHECK(dpcr::Validate(c) == dpcr::Status::kInvalidArgument);
   c.grid.hit_means = false;
   CHECK(dpcr::Validate(c) == dpcr::Status::kOk);
+}
+
+TEST_CASE("A mapper behind a noisy lidar keeps hit means, saves them as the clamp and loads the same log-odds") {
+  using Tiny = dpcr::Mapper<dpcr::TinyProfile>;
+  dpcr::MapperConfig config = dpcr::test::TestConfig<dpcr::TinyProfile>();
+  config.lidar.range_noise_m = 0.02f;  // declared: hit means on
+  auto mapper = dpcr::test::MakeMapper<dpcr::TinyProfile>(config);
+  REQUIRE(mapper != nullptr);
+  dpcr::test::SyntheticRun<Tiny> run(8.0f, 300, 180);
+  dpcr::test::Feed(*mapper, run);
+  // Every settled wall cell of every map is a code (returns keep falling in them).
+  int codes = 0, clamps = 0;
+  const dpcr::MapFileContent saved = mapper->map_file_content();
+  for (const dpcr::RegionalMap& r : saved.regions) {
+    dpcr::ForEachCellAbove(*r.grid, kHi - 1, [&](CellIndex, std::int16_t v) { ++(r.grid->HasHitMean(v) ? codes : clamps); });
+  }
+  INFO(codes << " hit means, " << clamps << " cells at the clamp without one");
+  CHECK(codes > 100);
+  CHECK(clamps == 0);
+  // Saved and loaded: each cell as the saved map reads it.
+  const std::vector<std::uint8_t> bytes = dpcr::test::SaveToBytes(*mapper);
+  REQUIRE(!bytes.empty());
+  auto fresh = dpcr::test::MakeMapper<dpcr::TinyProfile>(config);
+  dpcr::MemoryMapSource source(dpcr::Span<const std::uint8_t>(bytes.data(), bytes.size()));
+  REQUIRE(fresh->LoadMap(source).ok());
+  const dpcr::MapFileContent loaded = fresh->map_file_content();
+  REQUIRE(loaded.regions.size() == saved.regions.size());
+  int compared = 0;
+  for (std::size_t i = 0; i < saved.regions.size(); ++i) {
+    const dpcr::TiledGrid& a = *saved.regions[i].grid;
+    const dpcr::TiledGrid& b = *loaded.regions[i].grid;
+    const dpcr::CellBox box = a.box();
+    for (int y = box.min.y; y < box.max.y; ++y) {
+      for (int x = box.min.x; x < box.max.x; ++x) {
+        const std::int16_t v = a.Get(CellIndex{x, y});
+        if (v == dpcr::kUnknownCell) continue;
+        REQUIRE(b.Get(CellIndex{x, y}) == a.LogOdds(v));
+        ++compared;
+      }
+    }
+  }
+  CHECK(compared > 1000);
+  // Without a declared noise, no codes at all (the public logs' maps).
+  config.lidar.range_noise_m = 0.0f;
+  auto plain = dpcr::test::MakeMapper<dpcr::TinyProfile>(config);
+  dpcr::test::Feed(*plain, run);
+  for (const dpcr::RegionalMap& r : plain->map_file_content().regions) {
+    dpcr::ForEachCellAbove(*r.grid, kHi - 1, [&](CellIndex, std::int16_t v) { REQUIRE_FALSE(dpcr::IsHitMeanCode(v)); });
+  }
 }
