@@ -11,7 +11,7 @@
 //
 // No storage beyond the cells: every value above any permitted clamp (GridConfig::clamp_max <
 // kHitMeanCodeBase) is a code. A running mean in 6 bits needs unbiased rounding: each update
-// rounds up or down at random (a hash of the cell and the scan), so that small steps still move
+// rounds up or down at random (a hash of the scan and the return's index), so that small steps still move
 // the mean on average instead of sticking.
 #pragma once
 

@@ -406,6 +406,8 @@ void TiledGrid::AddHitMeans(Span<const Point2> hits, std::uint32_t seed) {
   std::uint32_t index = 0;
   for (const Point2& p : hits) {
     ++index;
+    // Times the inverse, not divided as the ray caster's CellOf: the rare return within a rounding
+    // error of a cell's edge may count for the neighbour's mean, at that edge.
     const float gx = p.x * inv_res, gy = p.y * inv_res;
     const CellIndex c{FloorToInt(gx), FloorToInt(gy)};
     int offset = 0;
