@@ -32,8 +32,9 @@ struct ObstacleCell {
   std::uint16_t line = kNoLine;  // owning line feature, kNoLine for clutter
   std::int8_t nx = 0;            // local unit normal * 127 from the 5x5 neighbourhood; (0, 0) = none
   std::int8_t ny = 0;
-  // Weight in the line fits: the cell's evidence (log-odds), so that the solid core of a wall
-  // steers a line and the cells that range noise reaches now and then barely do.
+  // Weight in the line fits: the cell's evidence (log-odds; with a hit mean, times the returns it
+  // holds), so that the solid core of a wall steers a line and the cells that range noise reaches
+  // now and then barely do.
   std::uint16_t weight = 1;
 
   ObstacleCell() : x(0), sub_x(kCentre), y(0), sub_y(kCentre) {}

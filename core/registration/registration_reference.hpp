@@ -125,7 +125,6 @@ class RegistrationReference {
   std::uint16_t Search(int x, int y) const;
   // Resets what the last build and its searches wrote: table entries, obstacle blocks.
   void ClearWritten();
-  // Window cell (x, y) becomes an obstacle cell (or keeps the larger weight if it is one).
   // Where in the cell its obstacle lies (ObstacleCell::sub_x, sub_y): the centre, or a hit mean.
   struct SubCell {
     std::uint16_t x = ObstacleCell::kCentre;
@@ -135,6 +134,8 @@ class RegistrationReference {
     const HitMean m = DecodeHitMean(code);
     return SubCell{static_cast<std::uint16_t>(m.qx), static_cast<std::uint16_t>(m.qy)};
   }
+  // Window cell (x, y) becomes an obstacle cell (or keeps the larger weight, and its sub-cell
+  // position, if it is one).
   inline void AddObstacleCell(int x, int y, std::uint16_t weight, SubCell sub, ReferenceBuildStats* stats);
   // ObstacleCell::weight of a cell of `grid` with value `v`.
   static std::uint16_t EvidenceWeight(const TiledGrid& grid, std::int16_t v, const ReferenceConfig& config);
