@@ -130,6 +130,7 @@ class RegistrationReference {
     std::uint16_t x = ObstacleCell::kCentre;
     std::uint16_t y = ObstacleCell::kCentre;
   };
+  static_assert(ObstacleCell::kSubCells == kHitMeanLevels, "a hit mean's level is the obstacle cell's sub-cell position");
   static SubCell SubCellOf(std::int16_t code) {  // a hit-mean code
     const HitMean m = DecodeHitMean(code);
     return SubCell{static_cast<std::uint16_t>(m.qx), static_cast<std::uint16_t>(m.qy)};
