@@ -41,6 +41,11 @@ RESULTS = {
                "result": {"map_file_bytes": 32010, "map_storage_bytes": 500000, "scan_times": scan_times(0.13),
                           "backend_total_ms": 374.0, "backend_calls": 430, "backend_max_ms": 5.3,
                           "loc_err_ave_m": 0.0234, "command": "build/host/host_sim/apps/dpcr-sim --world apartment"}},
+    "seeds": {"fail_above_m": 0.2, "rows": [
+        {"setting": "apartment: XV-11, gyro alone", "first": 1, "last": 3, "runs": 3, "median_m": 0.0234, "mean_m": 0.0256,
+         "worst_m": 0.0312, "failed": 1, "rigid_mean_m": 0.0101, "rejected_mean": 0.0012,
+         "command": "tools/bench/sim_seeds.py --first 1 --last 3 -- --lidar xv11 --odometry gyro"},
+        {"setting": "office: LD06, wheels", "first": 1, "last": 3, "error": "seed 2: dpcr-sim exited with 1"}]},
     "logs": [{"log": "intel.clf", "clf": "intel.clf", "scans": 13631, "scan_times": scan_times(0.06),
               "relations": {"trans_mean_m": 0.2197, "rot_mean_deg": 1.28, "under_10s": {"trans_mean_m": 0.0185},
                             "over_10s": {"trans_mean_m": 0.513}},
@@ -61,6 +66,8 @@ EXPECTED = [
     "## Paper Table 1: region width S, simulated office", "| 3 | 16 | 16 |", "| 4 | 12 | 12 |", "error: refused",
     "## Paper Table 2: simulated apartment", "DPCR-SLAM (paper) *(quoted)*", "Cartographer (paper) *(quoted)*",
     "| 2.3 |",  # the apartment's LocErr_ave in cm
+    "## Many seeds: lidars and odometry", "| apartment: XV-11, gyro alone | 1-3 | 2.34 | 2.56 | 3.1 | 1 of 3 | 1.01 | 0.12 % |",
+    "error: seed 2: dpcr-sim exited with 1", "--lidar xv11 --odometry gyro",
     "## Public logs (CARMEN)", "0.2197 m / 1.28°", "0.0185 m", "missing.clf: skipped",
     "Cartographer (Hess et al. 2016, published) *(quoted)*", "0.0229 m",
     "## Side by side: MRPT icp-slam", "12.9 ×",

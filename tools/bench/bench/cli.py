@@ -4,15 +4,15 @@ import json
 import os
 import time
 
-from bench import build, cost, machine, peer, report, scenarios
+from bench import build, cost, machine, peer, report, scenarios, seed_sets
 from bench.runs import rel, say
 
 QUICK = {"reps": 1, "region_widths": [3, 4, 6, 10], "office_minutes": 35, "office_long_minutes": 0,
          "apartment_minutes": 35, "default_logs": ["intel"], "callgrind_minutes": 3, "callgrind_intel_scans": 0,
-         "back_end_callgrind": False}
+         "back_end_callgrind": False, "seed_sets_last": 2}
 FULL = {"reps": 3, "region_widths": [3, 4, 5, 6, 7, 8, 9, 10], "office_minutes": 35, "office_long_minutes": 70,
         "apartment_minutes": 35, "default_logs": ["intel", "mit-csail"], "callgrind_minutes": 10,
-        "callgrind_intel_scans": 3000, "back_end_callgrind": True}
+        "callgrind_intel_scans": 3000, "back_end_callgrind": True, "seed_sets_last": 10}
 DEFAULT_LOGS = {"intel": ("intel.clf", "intel.relations"), "mit-csail": ("mit-csail.clf", None)}
 
 
@@ -30,7 +30,7 @@ def parse_args(argv):
     p.add_argument("--out", default=None, help="output folder (default: out/bench)")
     p.add_argument("--docs", default=None, help="RESULTS.md to write (default: docs/RESULTS.md; plots in docs/results/)")
     p.add_argument("--report-only", metavar="RESULTS_JSON", help="regenerate RESULTS.md and plots from a results.json")
-    p.add_argument("--skip", action="append", default=[], choices=["table1", "table2", "logs", "cost", "peer"],
+    p.add_argument("--skip", action="append", default=[], choices=["table1", "table2", "seeds", "logs", "cost", "peer"],
                    help="leave a part out (repeatable)")
     p.add_argument("--seed", type=int, default=1, help="simulation seed (default 1)")
     p.add_argument("--no-install", action="store_true", help="do not call scripts/install-deps.sh --bench first")
@@ -72,7 +72,7 @@ class Context:
                 "peer_logs": [os.path.basename(l["clf"]) for l in self.peer_logs],
                 "callgrind_apartment_minutes": self.callgrind_minutes,
                 "callgrind_intel_scans": self.callgrind_intel_scans,
-                "back_end_callgrind": self.back_end_callgrind}
+                "back_end_callgrind": self.back_end_callgrind, "seed_sets_seeds": [1, self.seed_sets_last]}
 
 
 def _timed(results, name, fn):
@@ -106,6 +106,8 @@ def main(argv, repo):
             results["table1_long"] = _timed(results, "table1_long", lambda: scenarios.office_region_widths(long_ctx))
     if "table2" not in args.skip:
         results["table2"] = _timed(results, "table2", lambda: scenarios.apartment(ctx))
+    if "seeds" not in args.skip:
+        results["seeds"] = _timed(results, "seeds", lambda: seed_sets.seed_sets(ctx))
     log_rows = []
     if "logs" not in args.skip:
         log_rows = results["logs"] = _timed(results, "logs", lambda: scenarios.public_logs(ctx))
