@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/front_end/acceleration_limit.hpp"
+#include "core/front_end/forward_step.hpp"
 #include "core/front_end/reference_for_noise.hpp"
 #include "core/geometry/wall_direction.hpp"
 #include "core/grid/ray_caster.hpp"
@@ -55,7 +56,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   wheel_check_ = WheelCheck{};
   pose_ = submap_pose_ = last_odom_ = last_motion_ = Pose2::Identity();
   last_motion_us_ = 0;
-  have_odom_ = have_scan_ = weak_match_ = have_gyro_yaw_ = false;
+  have_odom_ = have_scan_ = weak_match_ = have_gyro_yaw_ = last_degenerate_ = false;
   last_gyro_yaw_ = 0.0f;
   search_grid_version_ = 0;
   consecutive_rejections_ = consecutive_second_rejections_ = 0;
@@ -176,7 +177,8 @@ Pose2 FrontEnd::GuessedVelocityStep(const Pose2& step, std::int64_t dt_us) const
   // turn. The lidar alone (its turn a guess too) was worse with the limit: 10 min, seeds 1-60, two
   // runs over 0.2 m against none (docs/back-end.md, "A correction is not a speed").
   if (!HeadingMeasured() || (WheelsMeasured() && !wheel_check_.translation_doubted())) return step;
-  return LimitAcceleration(last_motion_, last_motion_us_, step, dt_us, config_.front_end.max_acceleration_mps2);
+  const Pose2 limited = LimitAcceleration(last_motion_, last_motion_us_, step, dt_us, config_.front_end.max_acceleration_mps2);
+  return last_degenerate_ && config_.front_end.degenerate_guess_forward ? ForwardStep(limited) : limited;
 }
 
 Pose2 FrontEnd::VelocityPerSecond() const {
@@ -605,6 +607,7 @@ void FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, st
   if (r.verdict == Status::kOk && ImplausibleWithoutWheels(r.pose, predicted, motion, dt_us)) r.verdict = Status::kRejected;
   ++fe_counters_.first_registrations;
   weak_match_ = r.verdict != Status::kOk || r.inlier_ratio < f.weak_match_inlier_ratio;
+  last_degenerate_ = r.verdict == Status::kOk && r.degenerate;
   if (r.verdict == Status::kOk) {
     pose_ = r.pose;
     consecutive_rejections_ = 0;

@@ -351,6 +351,7 @@ class FrontEnd {
   static constexpr std::uint32_t kMinScansBetweenEarlyBuilds = 2;
   std::uint32_t search_grid_version_ = 0;  // submap_line_builds when the search grid was built
   bool weak_match_ = false;  // the last first registration matched weakly (see FrontEndConfig)
+  bool last_degenerate_ = false;  // the last first registration was accepted degenerate (FrontEndConfig::degenerate_guess_forward)
   bool have_odom_ = false;
   bool have_gyro_yaw_ = false;  // last_gyro_yaw_ holds the gyro yaw at the last prediction
   bool have_scan_ = false;

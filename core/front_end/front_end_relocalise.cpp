@@ -200,6 +200,7 @@ void FrontEnd::ResumeAt(const GlobalFix& fix) {
 
 void FrontEnd::Rejoin(int found) {
   consecutive_rejections_ = 0;
+  last_degenerate_ = false;
   const Pose2 world = pose();
   last_world_ = world;
   const FrontEndConfig& f = config_.front_end;

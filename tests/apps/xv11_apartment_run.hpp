@@ -1,5 +1,5 @@
-// A simulated XV-11 run on the apartment through a vacuum Mapper, for the end-to-end tests of
-// sparse scans: the mapper told of the lidar as dpcr-sim tells it (the model's settings, the
+// A simulated XV-11 run on the apartment (or another built-in world) through a vacuum Mapper, for
+// the end-to-end tests of sparse scans and weak odometry: the mapper told of the lidar as dpcr-sim tells it (the model's settings, the
 // simulated range noise), each odometry sample shaped by what the robot has, and the position
 // error of every mapped scan relative to the first one.
 #pragma once
@@ -27,14 +27,14 @@ struct Xv11RunResult {
 // `sim_config.lidar` must be an XV-11's (sim::Xv11LidarConfig); `config`'s lidar is replaced by the
 // simulated one. `robot(OdometrySample*)` turns a simulated sample into what the robot has.
 template <class Robot>
-Xv11RunResult RunXv11Apartment(const sim::SimConfig& sim_config, MapperConfig config, Robot robot) {
+Xv11RunResult RunXv11World(const char* world, const sim::SimConfig& sim_config, MapperConfig config, Robot robot) {
   config.lidar = sim::MapperLidarConfig(sim_config);
   const float range_noise_m = config.lidar.range_noise_m;
   ApplyLidarModel(LidarKind::kXv11, &config.lidar);
   config.lidar.range_noise_m = range_noise_m;  // as dpcr-sim: the simulated noise
   auto mapper = std::make_unique<Mapper<VacuumProfile>>();
   REQUIRE(mapper->Init(config) == Status::kOk);
-  sim::Simulation sim(sim::LoadBuiltinWorld("apartment"), sim_config);
+  sim::Simulation sim(sim::LoadBuiltinWorld(world), sim_config);
   sim::SimEvent event;
   bool started = false;
   Pose2 first_estimate, first_truth;
@@ -63,6 +63,11 @@ Xv11RunResult RunXv11Apartment(const sim::SimConfig& sim_config, MapperConfig co
   const FrontEndCounters& fe = mapper->front_end_counters();
   if (fe.first_registrations > 0) run.rejected_share = static_cast<double>(fe.first_rejected) / static_cast<double>(fe.first_registrations);
   return run;
+}
+
+template <class Robot>
+Xv11RunResult RunXv11Apartment(const sim::SimConfig& sim_config, MapperConfig config, Robot robot) {
+  return RunXv11World("apartment", sim_config, config, robot);
 }
 
 }  // namespace dpcr::test
