@@ -24,11 +24,7 @@ dpcr::test::Xv11RunResult GyroOnlyRun(std::uint64_t seed, double minutes, dpcr::
   sim_config.lidar = dpcr::sim::Xv11LidarConfig();
   sim_config.lidar.invalid_probability = 0.5;
   sim_config.lidar.rate_min_hz = 3.5;
-  config.front_end.gyro_heading = true;
-  const dpcr::test::Xv11RunResult run = dpcr::test::RunXv11Apartment(sim_config, config, [](dpcr::OdometrySample* sample) {
-    sample->pose = dpcr::Pose2::Identity();  // a gyro alone: no wheel encoders
-    sample->has_wheels = false;
-  });
+  const dpcr::test::Xv11RunResult run = dpcr::test::RunXv11GyroOnly("apartment", sim_config, config);
   REQUIRE(run.scans > 80);
   return run;
 }

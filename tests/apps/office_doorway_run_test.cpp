@@ -16,11 +16,7 @@ dpcr::test::Xv11RunResult GyroOnlyOfficeRun(std::uint64_t seed, dpcr::MapperConf
   sim_config.seed = seed;
   sim_config.duration_min = 15.0;
   sim_config.lidar = dpcr::sim::Xv11LidarConfig();
-  config.front_end.gyro_heading = true;
-  const dpcr::test::Xv11RunResult run = dpcr::test::RunXv11World("office", sim_config, config, [](dpcr::OdometrySample* sample) {
-    sample->pose = dpcr::Pose2::Identity();  // a gyro alone: no wheel encoders
-    sample->has_wheels = false;
-  });
+  const dpcr::test::Xv11RunResult run = dpcr::test::RunXv11GyroOnly("office", sim_config, config);
   REQUIRE(run.scans > 1000);
   return run;
 }

@@ -70,4 +70,14 @@ Xv11RunResult RunXv11Apartment(const sim::SimConfig& sim_config, MapperConfig co
   return RunXv11World("apartment", sim_config, config, robot);
 }
 
+// A robot with a gyro and no wheel encoders (as the real XV-11 recordings: an IMU's yaw, no wheel
+// translation), the gyro giving the prediction's heading.
+inline Xv11RunResult RunXv11GyroOnly(const char* world, const sim::SimConfig& sim_config, MapperConfig config) {
+  config.front_end.gyro_heading = true;
+  return RunXv11World(world, sim_config, config, [](OdometrySample* sample) {
+    sample->pose = Pose2::Identity();
+    sample->has_wheels = false;
+  });
+}
+
 }  // namespace dpcr::test
