@@ -1,7 +1,7 @@
 // A simulated XV-11 run on the apartment (or another built-in world) through a vacuum Mapper, for
-// the end-to-end tests of sparse scans and weak odometry: the mapper told of the lidar as dpcr-sim tells it (the model's settings, the
-// simulated range noise), each odometry sample shaped by what the robot has, and the position
-// error of every mapped scan relative to the first one.
+// the end-to-end tests of sparse scans and weak odometry: the mapper told of the lidar as dpcr-sim
+// tells it (the model's settings, the simulated range noise), each odometry sample shaped by what
+// the robot has, and the position error of every mapped scan relative to the first one.
 #pragma once
 
 #include <catch2/catch.hpp>

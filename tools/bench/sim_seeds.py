@@ -39,6 +39,12 @@ def run_seed(sim, seed, out_dir, sim_args):
         return seed, None, "no readable metrics.json: %s" % e
 
 
+def run_seeds(sim, seeds, out_dir, sim_args, jobs):
+    """run_seed for each of `seeds`, `jobs` at once: [(seed, metrics or None, problem or None)]."""
+    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        return list(pool.map(lambda s: run_seed(sim, s, out_dir, sim_args), seeds))
+
+
 def summarise(results, threshold_m):
     errors = [m["accuracy"]["loc_err_ave_m"] for _, m in results]
     rigid = [m["accuracy"]["rigid_loc_err_ave_m"] for _, m in results]
@@ -83,9 +89,7 @@ def main():
         parser.error("no dpcr-sim at %s (build it, or pass --sim)" % args.sim)
     out_dir = args.out or tempfile.mkdtemp(prefix="dpcr-sim-seeds-")
     try:
-        seeds = range(args.first, args.last + 1)
-        with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
-            done = list(pool.map(lambda s: run_seed(args.sim, s, out_dir, args.sim_args), seeds))
+        done = run_seeds(args.sim, range(args.first, args.last + 1), out_dir, args.sim_args, args.jobs)
     finally:
         if args.out is None:
             shutil.rmtree(out_dir, ignore_errors=True)

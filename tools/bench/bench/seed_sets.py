@@ -4,7 +4,6 @@ apartment and the office. One run of a seed is one cleaning plan and one draw of
 over seeds says what a setting does, and the runs over 0.2 m say how often it loses the map.
 Uses tools/bench/sim_seeds.py's run and summary."""
 import os
-from concurrent.futures import ThreadPoolExecutor
 
 import sim_seeds
 from bench.runs import command_text, say
@@ -30,8 +29,7 @@ def seed_sets(ctx):
     for name, args in SETS:
         say(f"{name}, seeds {first}-{last}")
         out_dir = os.path.join(ctx.out, "seeds", name.replace(":", "").replace(",", "").replace(" ", "_"))
-        with ThreadPoolExecutor(max_workers=max(1, os.cpu_count() or 1)) as pool:
-            done = list(pool.map(lambda s: sim_seeds.run_seed(ctx.bins["sim"], s, out_dir, args), range(first, last + 1)))
+        done = sim_seeds.run_seeds(ctx.bins["sim"], range(first, last + 1), out_dir, args, os.cpu_count() or 1)
         problems = [f"seed {seed}: {why}" for seed, _, why in done if why is not None]
         command = command_text(["tools/bench/sim_seeds.py", "--first", str(first), "--last", str(last), "--", *args], ctx.repo)
         row = {"setting": name, "command": command, "first": first, "last": last}
