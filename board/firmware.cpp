@@ -406,6 +406,13 @@ int Firmware::Finish(int exit_code) {
   FlushLidar();
   PrintSummary();
   if (!config_.trajectory_path.empty()) {
+    // The start placed in the finished first map before the trajectory is written (the saved map
+    // does not change: only where the trajectory starts in it).
+    const StartRefinement start = mapper_->RefineStart();
+    if (start.refined) {
+      std::fprintf(log_, "dpcr-firmware: start placed in the finished map: %+.3f deg (%d of %d start scans)\n",
+                   static_cast<double>(start.offset_rad) * 57.29577951308232, start.registered, start.kept);
+    }
     std::string error;
     if (WriteTrajectory(&error)) {
       std::fprintf(log_, "dpcr-firmware: trajectory of %zu scans written to %s (%u not kept)\n",

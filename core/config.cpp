@@ -139,7 +139,11 @@ bool FrontEndOk(const FrontEndConfig& f, const GridConfig& g) {
                      (h.window_s == 0.0f || h.skip_s <= h.window_s) && In(h.min_samples, 2, 10000) &&
                      In(h.min_offset_rad, 0.0f, h.max_offset_rad) && In(h.max_offset_rad, 0.0f, 0.35f) &&
                      In(h.max_bias_rad_s, 0.0f, 1.0f);
-  return submap && periods && regions && registration && turn && start;
+  // The kept scans' times are int16 milliseconds (start_scans.hpp): a window of 30 s at most.
+  const StartScansConfig& k = f.start_scans;
+  const bool kept = AboveUpTo(k.window_s, 0.0f, 30.0f) && AboveUpTo(k.every_s, 0.0f, k.window_s) &&
+                    In(k.min_scans, 3, 1000) && AboveUpTo(k.max_offset_rad, 0.0f, 0.35f) && AboveUpTo(k.max_bias_rad_s, 0.0f, 1.0f);
+  return submap && periods && regions && registration && turn && start && kept;
 }
 
 bool SearchOk(const CorrelativeSearchConfig& c) {

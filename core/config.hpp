@@ -147,6 +147,18 @@ struct StartHeadingConfig {
   float max_bias_rad_s = 0.02f;    // 1.1 degrees/s: a gyro further off is not fitted
 };
 
+// The start placed in the finished first map (core/front_end/start_scans.hpp): scans of the
+// run's first window_s seconds, one every every_s, kept with the gyro's turn since the start and
+// registered again against the first map at the end of the run (Mapper::RefineStart).
+struct StartScansConfig {
+  bool enabled = true;
+  float window_s = 10.0f;
+  float every_s = 0.3f;
+  int min_scans = 8;              // registered again and accepted
+  float max_offset_rad = 0.035f;  // 2 degrees: more is not a map's tilt
+  float max_bias_rad_s = 0.02f;   // 1.1 degrees/s: a gyro further off is not fitted
+};
+
 struct FrontEndConfig {
   int submap_scans = 20;          // N: scans fused into the submap
   int submap_line_period = 10;    // K1: re-extract submap lines every K1 scans
@@ -299,6 +311,7 @@ struct FrontEndConfig {
   float grid_turn_rad = 0.2618f;       // 15 degrees
   float grid_turn_band_rad = 0.1222f;  // 7 degrees
   StartHeadingConfig start_heading;
+  StartScansConfig start_scans;
 };
 
 struct MapperConfig {

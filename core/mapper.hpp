@@ -102,6 +102,9 @@ class Mapper {
   }
   // The start heading refined with the gyro (core/front_end/start_heading.hpp).
   const StartHeadingFit& start_heading() const { return front_end_.start_heading(); }
+  // At the end of a run, before the trajectory is written: the start placed in the finished first
+  // map (FrontEnd::RefineStart, core/front_end/start_scans.hpp).
+  StartRefinement RefineStart() { return front_end_.RefineStart(); }
 
   // World-frame bounds of everything mapped so far.
   CellBox MapBounds() const {

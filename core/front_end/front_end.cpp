@@ -66,6 +66,8 @@ Status FrontEnd::Init(const MapperConfig& config) {
   start_pending_ = true;
   step_turn_measured_ = step_turn_from_wheels_ = start_wheel_turns_ = false;
   start_heading_.Reset();
+  start_scans_.Reset(&regions_.pool());
+  start_offset_rad_ = NAN;
   start_region_ = -1;
   bent_kept_out_ = 0;
   last_stamp_us_ = -1;
@@ -219,7 +221,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   // 0. Lost (wheels lifted, a long rejection streak, an unknown start): the scan goes into no
   // map; it tracks locally and searches the maps (front_end_relocalise.cpp).
   if (LostNow()) {
-    start_heading_.Abort();
+    StopStartFits();
     pending_.active = false;  // a lost robot maps nothing: the waiting scan is dropped
     RelocaliseScan(beams, motion, since_last_us, &projected, predicted);
     wheel_check_.AddScan(pose(), Pose2::Identity(), stamp_us, false);
@@ -264,13 +266,14 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   }
   // 3. Regions, and the second registration.
   TrackRegions();
-  // 4b. Once into a regional map (InsertIntoMaps).
+  const bool accepted = registered && !keep_out && consecutive_rejections_ == 0;
+  KeepStartScan(stamp_us, start_scan, projected.hits, accepted);  // before the map takes the points into its frame
+  // 4b. Once into a regional map (InsertIntoMaps); if not, its pose is still known in the anchor region's frame.
   if (!InsertIntoMaps(projected, pose(), keep_out, TurningFast())) {
-    // Its pose is still known in the anchor region's frame.
     last_scan_region_ = anchor_region_ >= 0 ? anchor_region_ : regions_.current();
     if (last_scan_region_ >= 0) last_scan_in_region_ = Between(regions_[last_scan_region_].anchor, pose());
   }
-  FitStartHeading(stamp_us, start_scan, registered && !keep_out && consecutive_rejections_ == 0);
+  FitStartHeading(stamp_us, start_scan, accepted);
   // 5. Back end: at most one queued job.
   StepBackEnd();
   FinishScan(since_last_us);
@@ -455,14 +458,16 @@ void FrontEnd::TurnFrameFromWalls(std::int64_t stamp_us, Span<const Point2> hits
 void FrontEnd::FitStartHeading(std::int64_t stamp_us, bool start_scan, bool accepted) {
   const StartHeadingConfig& h = config_.front_end.start_heading;
   if (start_scan) {
-    if (h.window_s > 0.0f && last_scan_region_ >= 0) {
-      start_heading_.Begin(stamp_us, pose().theta);
-      start_region_ = last_scan_region_;
-      start_in_region_ = last_scan_in_region_;
-    }
+    // The start's map and pose in it were recorded before the insertion (KeepStartScan).
+    if (h.window_s > 0.0f && last_scan_region_ >= 0) start_heading_.Begin(stamp_us, pose().theta);
     return;
   }
   FeedStartHeading(accepted);
+}
+
+void FrontEnd::StopStartFits() {
+  start_heading_.Abort();
+  start_scans_.Stop();  // what they kept stays good: placed before the robot lost itself
 }
 
 void FrontEnd::FeedStartHeading(bool accepted) {
@@ -479,13 +484,15 @@ Pose2 FrontEnd::ScanWorldPose(std::int64_t stamp_us, int region, const Pose2& in
   if (region < 0 && stamp_us < grid_turn_stamp_us_ && fe_counters_.grid_turn_rad != 0.0f) {
     world = Pose2{0.0f, 0.0f, fe_counters_.grid_turn_rad} * world;
   }
-  if (start_heading_.outcome() != StartHeadingFit::Outcome::kApplied || stamp_us > start_heading_.start_stamp_us() ||
-      start_region_ < 0 || start_region_ >= regions_.size()) {
+  const bool refined = !std::isnan(start_offset_rad_);
+  const bool fitted = start_heading_.outcome() == StartHeadingFit::Outcome::kApplied;
+  const std::int64_t start_us = refined ? start_scans_.start_stamp_us() : start_heading_.start_stamp_us();
+  if ((!refined && !fitted) || stamp_us > start_us || start_region_ < 0 || start_region_ >= regions_.size()) {
     return world;
   }
   // Turned about the start by the offset: the start lands where the later scans place it.
   const Pose2 start = regions_[start_region_].anchor * start_in_region_;
-  return start * Pose2{0.0f, 0.0f, start_heading_.offset_rad()} * start.Inverse() * world;
+  return start * Pose2{0.0f, 0.0f, refined ? start_offset_rad_ : start_heading_.offset_rad()} * start.Inverse() * world;
 }
 
 bool FrontEnd::SkipScan(const ProjectedScan& projected, const Pose2& predicted) {

@@ -24,6 +24,7 @@
 #include "core/front_end/region_tracker.hpp"
 #include "core/front_end/scan_motion.hpp"
 #include "core/front_end/start_heading.hpp"
+#include "core/front_end/start_scans.hpp"
 #include "core/front_end/submap.hpp"
 #include "core/front_end/wheel_check.hpp"
 #include "core/geometry/scan.hpp"
@@ -112,6 +113,14 @@ class FrontEnd {
   // has refined it (start_heading.hpp): the map's frame stays, the start moves.
   Pose2 ScanWorldPose(std::int64_t stamp_us, int region, const Pose2& in_region, const Pose2& online) const;
   const StartHeadingFit& start_heading() const { return start_heading_; }
+  // At the end of a run, before the trajectory is written: the kept start scans registered again
+  // against the finished first map place the start in it (start_scans.hpp); ScanWorldPose then
+  // turns the start by that offset instead of the start heading fit's. Builds the regional
+  // reference (a loop-closure search in progress is cancelled) and gives the kept scans' tiles
+  // back. Once refined, later calls return the same offset.
+  StartRefinement RefineStart();
+  // The offset the start was turned by at the end (NaN: not refined).
+  float start_refined_offset_rad() const { return start_offset_rad_; }
 
   // Loading a saved map (core/persistence/map_reader.hpp; front_end_restore.cpp), after Init:
   // RestoreRegion appends the regional maps in their saved order (nullptr: pool full); after the
@@ -214,6 +223,12 @@ class FrontEnd {
   // skipped one too (SkipScan).
   void FitStartHeading(std::int64_t stamp_us, bool start_scan, bool accepted);
   void FeedStartHeading(bool accepted);
+  // A lost robot: the start heading's fit aborts, the start scans keep no more.
+  void StopStartFits();
+  // Before the regional map takes the scan: the start scan begins the kept start scans (with a
+  // gyro yaw), later ones are kept when due; a pool that ran out takes their tiles back
+  // (front_end_start_scans.cpp).
+  void KeepStartScan(std::int64_t stamp_us, bool start_scan, std::size_t hits, bool accepted);
   // The run's first scan not skipped, into a new map: turns the world frame about its origin, and
   // the robot's poses in it (pose_, `previous`, `predicted`), so that the scan's walls lie off the
   // grid's axes when they lie along them (FrontEndConfig::grid_turn_rad; recorded in fe_counters_).
@@ -360,20 +375,23 @@ class FrontEnd {
   int consecutive_second_rejections_ = 0;  // in a mature regional map (TrackRegions)
   bool restart_pending_ = false;  // a submap restart is due, waiting for a scan with enough returns
   bool grid_turn_pending_ = false;  // no scan has been mapped yet: the next one may turn the grid
-  std::int64_t grid_turn_stamp_us_ = 0;  // the scan that could turn it; scans before it were in the old frame
   // The start heading's fit (FitStartHeading): pending until the run's first scan not skipped;
   // the last prediction's turn, whether a sensor measured it and whether the wheels did; whether
   // any turn since the start came from the wheels; the start scan's map and pose in it.
+  // (The flags here, beside the two above and the two below, fill what was padding.)
   bool start_pending_ = false;
-  float step_turn_ = 0.0f;
   bool step_turn_measured_ = false;
   bool step_turn_from_wheels_ = false;
   bool start_wheel_turns_ = false;
-  StartHeadingFit start_heading_;
-  int start_region_ = -1;
-  Pose2 start_in_region_;
   bool bent_ = false;             // the last scan's de-skew was doubtful (RegisterRedeskewed)
   std::uint8_t bent_kept_out_ = 0;  // bent scans kept out in a row
+  std::int64_t grid_turn_stamp_us_ = 0;  // the scan that could turn it; scans before it were in the old frame
+  float step_turn_ = 0.0f;
+  float start_offset_rad_ = NAN;  // RefineStart's (NaN: not refined)
+  StartHeadingFit start_heading_;
+  StartScans start_scans_;  // it keeps the start scan's stamp too
+  int start_region_ = -1;
+  Pose2 start_in_region_;
   static constexpr std::uint8_t kMaxBentKeptOut = 5;  // then one goes in: the submap must not go stale
   std::int64_t last_stamp_us_ = -1;  // the last scan's stamp, where pose_ is (-1: none yet)
   std::int64_t streak_us_ = 0;       // time covered by the current rejection streak

@@ -67,6 +67,8 @@ class RegionSet {
   int previous() const { return previous_; }
   // Set once a region found the pool empty or a map dropped updates for want of tiles.
   bool pool_full() const { return pool_full_; }
+  // The tile pool every map draws from (the kept start scans borrow from it too).
+  TilePool& pool() { return maps_[0].grid->pool(); }
 
  private:
   Span<RegionalMap> maps_;

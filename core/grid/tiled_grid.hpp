@@ -141,6 +141,7 @@ class TiledGrid {
   // holds a tile, or the pool is exhausted.
   Span<std::int16_t> RestoreTile(int tx, int ty);
   const TilePool& pool() const { return *pool_; }
+  TilePool& pool() { return *pool_; }
 
   // One update's delta, bounds and settle rule, prepared once per batch (tiled_grid.cpp).
   struct Learning;

@@ -69,6 +69,7 @@ struct Options {
   float unsettle_margin_m = -1.0f;  // GridConfig::unsettle_miss_margin_m (< 0: the default)
   int drop_behind_cells = -1;       // GridConfig::drop_hits_behind_settled_cells (< 0: the default)
   bool hit_means = true;            // GridConfig::hit_means
+  bool start_scans = true;          // StartScansConfig::enabled
   std::vector<double> lidar_noise;  // range sigma base (m), fraction of the range (empty: the lidar model's)
   bool ideal_wheels = false;        // no calibration error, no slips (the wheels' ticks still quantise)
 };
@@ -159,6 +160,7 @@ nlohmann::json InputMetrics(const Options& opt, const dpcr::sim::Simulation& sim
 void AddMapperInputs(const dpcr::MapperConfig& config, nlohmann::json* input) {
   (*input)["unsettle_after"] = {config.grid.unsettle_occupied_after, config.grid.unsettle_free_after};
   (*input)["hit_means"] = config.grid.hit_means;
+  (*input)["start_scans"] = config.front_end.start_scans.enabled;
   (*input)["near_weight_range_m"] = config.lidar.near_weight_range_m;
   (*input)["map_max_turn_rate_dps"] = config.lidar.map_max_turn_rate_rad_s * 180.0 / M_PI;
   (*input)["max_acceleration_mps2"] = config.front_end.max_acceleration_mps2;
@@ -222,6 +224,7 @@ dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfi
   if (opt.unsettle_margin_m >= 0.0f) config.grid.unsettle_miss_margin_m = opt.unsettle_margin_m;
   if (opt.drop_behind_cells >= 0) config.grid.drop_hits_behind_settled_cells = static_cast<std::uint8_t>(opt.drop_behind_cells);
   config.grid.hit_means = opt.hit_means;
+  config.front_end.start_scans.enabled = opt.start_scans;
   return config;
 }
 
@@ -404,6 +407,9 @@ void AddSensorOptions(CLI::App& app, Options& opt) {
   app.add_option("--unsettle-after", opt.unsettle_after, "settled regional cells learn again after this many scans in a row "
                  "contradict them: occupied,free (0: never; GridConfig::unsettle_occupied_after, unsettle_free_after)")
       ->expected(2)->delimiter(',')->check(CLI::Range(0, 255));
+  app.add_option("--start-scans", opt.start_scans, "keep scans of the first seconds with the gyro's turn and, at the end, place "
+                 "the start in the finished first map with them (StartScansConfig::enabled; core/front_end/start_scans.hpp)")
+      ->default_str("true");
   app.add_option("--hit-means", opt.hit_means, "regional maps' wall cells learn where in them the returns fall, and their lines "
                  "are fitted there (GridConfig::hit_means; only with a lidar that declares its range noise)")
       ->default_str("true");

@@ -151,6 +151,7 @@ nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, cons
                             {"p95", Percentile(run.per_scan_ms, 0.95)},
                             {"max", Percentile(run.per_scan_ms, 1.0)}};
   metrics["wall_seconds"] = run.wall_seconds;
+  metrics["start_scans"] = StartRefinementMetrics(run.start_refinement);
   metrics["map_size_cells"] = {map.width(), map.height()};
   if (!run.ground_truth.empty()) {
     dpcr::eval::Trajectory measured;
@@ -193,6 +194,16 @@ nlohmann::json StartHeadingMetrics(const dpcr::StartHeadingFit& fit) {
           {"offset_deg", fitted ? nlohmann::json(fit.offset_rad() * 180.0 / M_PI) : nlohmann::json()},
           {"gyro_bias_deg_s", fitted ? nlohmann::json(fit.bias_rad_s() * 180.0 / M_PI) : nlohmann::json()},
           {"samples", fit.samples()}};
+}
+
+nlohmann::json StartRefinementMetrics(const dpcr::StartRefinement& r) {
+  const bool fitted = r.refined || r.registered > 0;
+  return {{"refined", r.refined},
+          {"kept", r.kept},
+          {"registered", r.registered},
+          {"offset_deg", fitted ? nlohmann::json(r.offset_rad * 180.0 / M_PI) : nlohmann::json()},
+          {"gyro_bias_deg_s", fitted ? nlohmann::json(r.bias_rad_s * 180.0 / M_PI) : nlohmann::json()},
+          {"offset_se_deg", fitted && std::isfinite(r.offset_se_rad) ? nlohmann::json(r.offset_se_rad * 180.0 / M_PI) : nlohmann::json()}};
 }
 
 }  // namespace dpcr::output

@@ -15,6 +15,7 @@
 #include "host_sim/eval/anchor_errors.hpp"
 #include "host_sim/eval/trajectory.hpp"
 #include "core/front_end/start_heading.hpp"
+#include "core/front_end/start_scans.hpp"
 #include "core/mapper_types.hpp"
 
 namespace dpcr::output {
@@ -40,6 +41,7 @@ struct RunRecord {
   // unknown pose in a loaded map has no pose worth measuring before its first fix.
   std::int64_t accuracy_from_us = INT64_MIN;
   bool write_regions = false;  // also regions.tsv and graph.tsv (region_files.hpp)
+  dpcr::StartRefinement start_refinement;  // the start placed in the finished first map (FinalizeTrajectory)
 };
 
 // An edge's kind as metrics.json and graph.tsv name it (AnchorEdge::kind, dpcr::EdgeKind order).
@@ -82,9 +84,11 @@ void AddTimedScan(MapperType& mapper, const typename MapperType::ScanType& scan,
 
 // At the end of a run: each scan's pose becomes its map's final anchor times its pose in the map
 // (the globally consistent trajectory, as the maps are); scans in no map keep their online pose;
-// the start and the scans before it follow the refined start heading (Mapper::ScanWorldPose).
+// the start and the scans before it follow the start placed in the finished first map
+// (Mapper::RefineStart, done here first) or else the refined start heading (Mapper::ScanWorldPose).
 template <class MapperType>
-void FinalizeTrajectory(const MapperType& mapper, RunRecord* run) {
+void FinalizeTrajectory(MapperType& mapper, RunRecord* run) {
+  run->start_refinement = mapper.RefineStart();
   run->final_anchors.clear();
   for (int r = 0; r < mapper.region_count(); ++r) run->final_anchors.push_back(mapper.region_anchor(r));
   run->final_edges.clear();
@@ -107,6 +111,10 @@ nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, cons
 // The start heading's fit (metrics.json "start_heading"): its outcome (none, applied, small,
 // refused, aborted, wheels), the offset and the heading sensor's bias fitted, the scans it took.
 nlohmann::json StartHeadingMetrics(const dpcr::StartHeadingFit& fit);
+
+// The start placed in the finished first map at the end of the run (metrics.json "start_scans"):
+// whether it was, the start scans kept and registered again, the offset and the gyro's bias fitted.
+nlohmann::json StartRefinementMetrics(const dpcr::StartRefinement& refinement);
 
 // How much of the run the mapper knew where it was (metrics.json "tracking"): scans and seconds
 // lost (status kLost after the scan) and in rejection streaks, the longest streak, the share of

@@ -182,6 +182,11 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(front_end.start_heading.min_offset_rad, (std::vector<double>{-1.0, kNaN, kInf, 0.1})),
       FLOAT_FIELD(front_end.start_heading.max_offset_rad, (std::vector<double>{-1.0, kNaN, kInf, 1.0, 0.001})),
       FLOAT_FIELD(front_end.start_heading.max_bias_rad_s, (std::vector<double>{-1.0, kNaN, kInf, 2.0})),
+      FLOAT_FIELD(front_end.start_scans.window_s, (std::vector<double>{-1.0, 0.0, kNaN, kInf, 31.0})),
+      FLOAT_FIELD(front_end.start_scans.every_s, (std::vector<double>{-1.0, 0.0, kNaN, kInf, 11.0})),
+      INT_FIELD(front_end.start_scans.min_scans, (std::vector<double>{-1.0, 0.0, 2.0, 1e5})),
+      FLOAT_FIELD(front_end.start_scans.max_offset_rad, (std::vector<double>{-1.0, 0.0, kNaN, kInf, 1.0})),
+      FLOAT_FIELD(front_end.start_scans.max_bias_rad_s, (std::vector<double>{-1.0, 0.0, kNaN, kInf, 2.0})),
       // The coarse pose search and the weak-match rebuild, unchecked until fuzz/fuzz_mapper_config.cpp
       // found e.g. kernel_radius_cells = INT_MIN, sigma_m = NaN or 1e-30, or angle_window_rad = NaN
       // overflowing int casts in rotation_search.cpp after a rejected registration.
