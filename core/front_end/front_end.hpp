@@ -229,6 +229,8 @@ class FrontEnd {
   // gyro yaw), later ones are kept when due; a pool that ran out takes their tiles back
   // (front_end_start_scans.cpp).
   void KeepStartScan(std::int64_t stamp_us, bool start_scan, std::size_t hits, bool accepted);
+  // The gyro's yaw at the start scan (false: no gyro).
+  bool StartGyroYaw(std::int64_t stamp_us, float* yaw) const;
   // The run's first scan not skipped, into a new map: turns the world frame about its origin, and
   // the robot's poses in it (pose_, `previous`, `predicted`), so that the scan's walls lie off the
   // grid's axes when they lie along them (FrontEndConfig::grid_turn_rad; recorded in fe_counters_).

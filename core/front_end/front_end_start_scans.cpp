@@ -10,15 +10,20 @@ namespace dpcr {
 
 void FrontEnd::KeepStartScan(std::int64_t stamp_us, bool start_scan, std::size_t hits, bool accepted) {
   const StartScansConfig& c = config_.front_end.start_scans;
+  // The gyro's yaw; without a gyro, the wheels' heading, kept in case the wheel check finds the
+  // ticks to carry only an IMU's heading (as real recordings were converted).
   float yaw = 0.0f;
-  const bool have_yaw = odometry_.GyroYawAt(stamp_us, &yaw);
+  const bool gyro = start_scan ? StartGyroYaw(stamp_us, &yaw) : !start_scans_.wheel_turns() && odometry_.GyroYawAt(stamp_us, &yaw);
+  const bool wheel_turns = start_scan ? !gyro : start_scans_.wheel_turns();
+  const bool have_yaw = wheel_turns ? have_odom_ && WheelsMeasured() : gyro;
+  if (wheel_turns) yaw = NormalizeAngle(last_odom_.theta);
   if (start_scan) {
     const int map = regions_.current();
     if (map < 0) return;
     start_region_ = map;
     start_in_region_ = Between(regions_[map].anchor, pose());
     // Not for a loaded map (its frame is the saved one), nor without a gyro.
-    if (!c.enabled || !have_yaw || !start_scans_.Begin(&regions_.pool(), stamp_us, yaw)) return;
+    if (!c.enabled || !have_yaw || !start_scans_.Begin(&regions_.pool(), stamp_us, yaw, wheel_turns)) return;
     accepted = true;
   } else {
     start_scans_.Track(stamp_us, have_yaw, yaw, c);
@@ -33,6 +38,13 @@ void FrontEnd::KeepStartScan(std::int64_t stamp_us, bool start_scan, std::size_t
   }
 }
 
+bool FrontEnd::StartGyroYaw(std::int64_t stamp_us, float* yaw) const {
+  if (odometry_.GyroYawAt(stamp_us, yaw)) return true;
+  // A device's first revolution can be stamped before the first wheel frame it waited for (the
+  // bus's latency): the gyro's yaw at its first sample, the robot barely moved in between.
+  return !odometry_.empty() && stamp_us < odometry_.oldest().stamp_us && odometry_.GyroYawAt(odometry_.oldest().stamp_us, yaw);
+}
+
 StartRefinement FrontEnd::RefineStart() {
   StartRefinement out;
   out.kept = start_scans_.size();
@@ -42,7 +54,10 @@ StartRefinement FrontEnd::RefineStart() {
     return out;
   }
   const StartScansConfig& c = config_.front_end.start_scans;
-  if (out.kept < c.min_scans || start_region_ < 0 || start_region_ >= regions_.size()) {
+  // Turns from wheels that measure the translation too err with the distance driven (a wheel's
+  // radius), not with time: not a gyro's (as for the start heading's fit).
+  const bool wheels = start_scans_.wheel_turns() && !wheel_check_.translation_ignored();
+  if (out.kept < c.min_scans || wheels || start_region_ < 0 || start_region_ >= regions_.size()) {
     start_scans_.Release(&regions_.pool());
     return out;
   }

@@ -21,6 +21,7 @@ class OdometryBuffer {
   }
   bool empty() const { return samples_.empty(); }
   const OdometrySample& newest() const { return samples_.back(); }
+  const OdometrySample& oldest() const { return samples_.front(); }
 
   // Interpolated between the bracketing samples; before the oldest: the oldest; after the newest:
   // extrapolated at the last velocity for at most kMaxExtrapolationUs, then held.

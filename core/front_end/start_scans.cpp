@@ -34,7 +34,7 @@ void StartScans::Release(TilePool* pool) {
   start_us_ = start_us;
 }
 
-bool StartScans::Begin(TilePool* pool, std::int64_t stamp_us, float gyro_yaw_rad) {
+bool StartScans::Begin(TilePool* pool, std::int64_t stamp_us, float yaw_rad, bool wheel_turns) {
   Reset(pool);
   if (pool->capacity() < kMinPoolTiles) return false;
   TileId borrowed[kTiles];
@@ -48,18 +48,19 @@ bool StartScans::Begin(TilePool* pool, std::int64_t stamp_us, float gyro_yaw_rad
   for (int i = 1; i < kTiles; ++i) (*pool)[first_tile_].updated[i - 1] = borrowed[i];
   keeping_ = true;
   start_us_ = stamp_us;
-  last_yaw_ = gyro_yaw_rad;
+  last_yaw_ = yaw_rad;
+  wheel_turns_ = wheel_turns;
   return true;
 }
 
-void StartScans::Track(std::int64_t stamp_us, bool have_yaw, float gyro_yaw_rad, const StartScansConfig& config) {
+void StartScans::Track(std::int64_t stamp_us, bool have_yaw, float yaw_rad, const StartScansConfig& config) {
   if (!keeping_) return;
   if (!have_yaw || static_cast<float>(stamp_us - start_us_) * 1e-6f > config.window_s) {
     keeping_ = false;
     return;
   }
-  turn_ += NormalizeAngle(gyro_yaw_rad - last_yaw_);
-  last_yaw_ = gyro_yaw_rad;
+  turn_ += NormalizeAngle(yaw_rad - last_yaw_);
+  last_yaw_ = yaw_rad;
 }
 
 bool StartScans::Due(const TilePool& pool, std::int64_t stamp_us, const StartScansConfig& config) const {

@@ -63,12 +63,14 @@ class StartScans {
   // below that reads or writes the kept scans takes the pool their tiles came from: the class
   // holds their ids only (the vacuum profile has no byte to spare).
   void Reset(TilePool* pool);
-  // The run's start scan, with the gyro's yaw at it: borrows the tiles (false, keeping nothing,
-  // when the pool cannot spare them or is too small). Keep the start scan itself next.
-  bool Begin(TilePool* pool, std::int64_t stamp_us, float gyro_yaw_rad);
-  // Every later scan, with the gyro's yaw (have_yaw false: none). The turn since the start is
-  // unwrapped scan by scan. Without a yaw, or past the window, keeping stops (what is kept stays).
-  void Track(std::int64_t stamp_us, bool have_yaw, float gyro_yaw_rad, const StartScansConfig& config);
+  // The run's start scan, with the heading sensor's yaw at it: borrows the tiles (false, keeping
+  // nothing, when the pool cannot spare them or is too small). Keep the start scan itself next.
+  // `wheel_turns`: the yaw is the wheel odometry's (ticks that may carry only an IMU's heading;
+  // the front end decides at the end whether they do).
+  bool Begin(TilePool* pool, std::int64_t stamp_us, float yaw_rad, bool wheel_turns);
+  // Every later scan, with the same sensor's yaw (have_yaw false: none). The turn since the start
+  // is unwrapped scan by scan. Without a yaw, or past the window, keeping stops (what is kept stays).
+  void Track(std::int64_t stamp_us, bool have_yaw, float yaw_rad, const StartScansConfig& config);
   void Stop() { keeping_ = false; }
   // Whether this scan is to be kept: keeping, room left, config.every_s since the last one kept.
   bool Due(const TilePool& pool, std::int64_t stamp_us, const StartScansConfig& config) const;
@@ -78,6 +80,7 @@ class StartScans {
   void Release(TilePool* pool);
 
   bool keeping() const { return keeping_; }
+  bool wheel_turns() const { return wheel_turns_; }
   bool holds_tiles() const { return first_tile_ != kNoTile; }
   std::int64_t start_stamp_us() const { return start_us_; }
   int size() const { return n_; }
@@ -98,6 +101,7 @@ class StartScans {
   TileId first_tile_ = kNoTile;
   std::uint8_t n_ = 0;
   bool keeping_ = false;
+  bool wheel_turns_ = false;
 };
 
 // The start's heading in the finished map less its recorded one, from the kept scans registered

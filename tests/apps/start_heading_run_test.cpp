@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "core/mapper.hpp"
-#include "hal/device_options.hpp"
 #include "host_sim/sim/heading_only_ticks.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
+#include "tests/apps/sim_lidar_config.hpp"
 
 namespace {
 
@@ -38,10 +38,7 @@ StartRun RunApartment(std::uint64_t seed, Robot robot, float window_s) {
   sim_config.duration_min = 1.0;
   if (xv11) sim_config.lidar = dpcr::sim::Xv11LidarConfig();
   dpcr::MapperConfig config;
-  config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
-  const float range_noise_m = config.lidar.range_noise_m;
-  dpcr::ApplyLidarModel(xv11 ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06, &config.lidar);
-  config.lidar.range_noise_m = range_noise_m;  // as dpcr-sim: the simulated noise
+  config.lidar = dpcr::test::SimulatedLidarConfig(sim_config, xv11 ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06);
   config.front_end.gyro_heading = robot == Robot::kXv11Gyro;
   config.front_end.start_heading.window_s = window_s;
   auto mapper = std::make_unique<MapperType>();

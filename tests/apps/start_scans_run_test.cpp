@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "core/mapper.hpp"
-#include "hal/device_options.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
+#include "tests/apps/sim_lidar_config.hpp"
 
 namespace {
 
@@ -52,10 +52,7 @@ Turns RunApartment(std::uint64_t seed, bool xv11) {
   sim_config.duration_min = 10.0;
   if (xv11) sim_config.lidar = dpcr::sim::Xv11LidarConfig();
   dpcr::MapperConfig config;
-  config.lidar = dpcr::sim::MapperLidarConfig(sim_config);
-  const float range_noise_m = config.lidar.range_noise_m;
-  dpcr::ApplyLidarModel(xv11 ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06, &config.lidar);
-  config.lidar.range_noise_m = range_noise_m;  // as dpcr-sim: the simulated noise
+  config.lidar = dpcr::test::SimulatedLidarConfig(sim_config, xv11 ? dpcr::LidarKind::kXv11 : dpcr::LidarKind::kLd06);
   config.front_end.gyro_heading = xv11;        // as dpcr-sim's default: the gyro for an XV-11
   auto mapper = std::make_unique<MapperType>();
   REQUIRE(mapper->Init(config) == dpcr::Status::kOk);

@@ -11,9 +11,9 @@
 #include <memory>
 
 #include "core/mapper.hpp"
-#include "hal/device_options.hpp"
 #include "host_sim/sim/simulation.hpp"
 #include "host_sim/sim/world.hpp"
+#include "tests/apps/sim_lidar_config.hpp"
 
 namespace dpcr::test {
 
@@ -28,10 +28,7 @@ struct Xv11RunResult {
 // simulated one. `robot(OdometrySample*)` turns a simulated sample into what the robot has.
 template <class Robot>
 Xv11RunResult RunXv11World(const char* world, const sim::SimConfig& sim_config, MapperConfig config, Robot robot) {
-  config.lidar = sim::MapperLidarConfig(sim_config);
-  const float range_noise_m = config.lidar.range_noise_m;
-  ApplyLidarModel(LidarKind::kXv11, &config.lidar);
-  config.lidar.range_noise_m = range_noise_m;  // as dpcr-sim: the simulated noise
+  config.lidar = SimulatedLidarConfig(sim_config, LidarKind::kXv11);
   auto mapper = std::make_unique<Mapper<VacuumProfile>>();
   REQUIRE(mapper->Init(config) == Status::kOk);
   sim::Simulation sim(sim::LoadBuiltinWorld(world), sim_config);

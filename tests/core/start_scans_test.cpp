@@ -40,7 +40,7 @@ TEST_CASE("A kept start scan reads back where it was placed in the first map") {
   dpcr::StartScansConfig config;
   StartScans scans;
   scans.Reset(&p.pool);
-  REQUIRE(scans.Begin(&p.pool, 5 * kSecond, 0.3f));
+  REQUIRE(scans.Begin(&p.pool, 5 * kSecond, 0.3f, false));
   const Pose2 in_map{1.5f, -0.7f, 0.4f};
   const std::vector<Point2> hits = Ring(400, 3.0f);  // more than a kept scan holds: thinned evenly
   scans.Keep(&p.pool, 5 * kSecond, in_map, dpcr::Span<const Point2>(hits.data(), hits.size()));
@@ -63,7 +63,7 @@ TEST_CASE("The gyro turn since the start is unwrapped scan by scan") {
   dpcr::StartScansConfig config;
   StartScans scans;
   scans.Reset(&p.pool);
-  REQUIRE(scans.Begin(&p.pool, 0, 3.0f));
+  REQUIRE(scans.Begin(&p.pool, 0, 3.0f, false));
   const std::vector<Point2> hits = Ring(50, 2.0f);
   // Three quarter turns past the yaw's wrap at pi: the turn is 4.5 rad, not 4.5 - 2 pi.
   scans.Track(kSecond / 2, true, 3.0f + 1.5f - 6.2831853f, config);
@@ -86,7 +86,7 @@ TEST_CASE("Start scans are kept every_s apart, up to capacity, until the window 
   const dpcr::Span<const Point2> span(hits.data(), hits.size());
   StartScans scans;
   scans.Reset(&p.pool);
-  REQUIRE(scans.Begin(&p.pool, 0, 0.0f));
+  REQUIRE(scans.Begin(&p.pool, 0, 0.0f, false));
   REQUIRE(scans.Due(p.pool, 0, config));
   scans.Keep(&p.pool, 0, Pose2::Identity(), span);
   CHECK_FALSE(scans.Due(p.pool, kSecond / 10, config));  // too soon
@@ -99,13 +99,13 @@ TEST_CASE("Start scans are kept every_s apart, up to capacity, until the window 
 
   // The window.
   scans.Reset(&p.pool);
-  REQUIRE(scans.Begin(&p.pool, 0, 0.0f));
+  REQUIRE(scans.Begin(&p.pool, 0, 0.0f, false));
   scans.Track(11 * kSecond, true, 0.0f, config);
   CHECK_FALSE(scans.keeping());
   CHECK_FALSE(scans.Due(p.pool, 11 * kSecond, config));
   // A missing gyro yaw: what is kept stays, nothing more is kept.
   scans.Reset(&p.pool);
-  REQUIRE(scans.Begin(&p.pool, 0, 0.0f));
+  REQUIRE(scans.Begin(&p.pool, 0, 0.0f, false));
   scans.Keep(&p.pool, 0, Pose2::Identity(), span);
   scans.Track(kSecond, false, 0.0f, config);
   CHECK_FALSE(scans.keeping());
@@ -117,7 +117,7 @@ TEST_CASE("Start scans borrow tiles from the pool and give them back") {
     Pool p(256);
     StartScans scans;
     scans.Reset(&p.pool);
-    REQUIRE(scans.Begin(&p.pool, 0, 0.0f));
+    REQUIRE(scans.Begin(&p.pool, 0, 0.0f, false));
     CHECK(p.pool.used() == static_cast<std::size_t>(StartScans::kTiles));
     CHECK(scans.holds_tiles());
     scans.Release(&p.pool);
@@ -125,8 +125,10 @@ TEST_CASE("Start scans borrow tiles from the pool and give them back") {
     CHECK(scans.size() == 0);
     CHECK_FALSE(scans.holds_tiles());
     CHECK(scans.start_stamp_us() == 0);
-    // A second Begin after a Reset borrows again, and Reset gives them back.
-    REQUIRE(scans.Begin(&p.pool, 7, 0.0f));
+    // A second Begin after a Reset borrows again (here with the wheels' heading, which the front
+    // end uses only if the ticks turn out to carry an IMU's), and Reset gives them back.
+    REQUIRE(scans.Begin(&p.pool, 7, 0.0f, true));
+    CHECK(scans.wheel_turns());
     scans.Reset(&p.pool);
     CHECK(p.pool.used() == 0);
   }
@@ -134,7 +136,7 @@ TEST_CASE("Start scans borrow tiles from the pool and give them back") {
     Pool p(StartScans::kMinPoolTiles - 1);
     StartScans scans;
     scans.Reset(&p.pool);
-    CHECK_FALSE(scans.Begin(&p.pool, 0, 0.0f));
+    CHECK_FALSE(scans.Begin(&p.pool, 0, 0.0f, false));
     CHECK(p.pool.used() == 0);
   }
   SECTION("a pool without enough free tiles keeps none and loses none") {
@@ -143,7 +145,7 @@ TEST_CASE("Start scans borrow tiles from the pool and give them back") {
     const std::size_t used = p.pool.used();
     StartScans scans;
     scans.Reset(&p.pool);
-    CHECK_FALSE(scans.Begin(&p.pool, 0, 0.0f));
+    CHECK_FALSE(scans.Begin(&p.pool, 0, 0.0f, false));
     CHECK(p.pool.used() == used);
     CHECK_FALSE(scans.holds_tiles());
   }
@@ -155,7 +157,7 @@ TEST_CASE("The start offset fit finds a known offset and gyro bias") {
   StartScans scans;
   scans.Reset(&p.pool);
   const float start_heading = 0.1f, offset = 0.004f, bias = 0.002f;
-  REQUIRE(scans.Begin(&p.pool, 0, 0.0f));
+  REQUIRE(scans.Begin(&p.pool, 0, 0.0f, false));
   const std::vector<Point2> hits = Ring(30, 2.0f);
   float yaw = 0.0f;
   std::vector<float> registered;
