@@ -22,7 +22,7 @@ void FrontEnd::KeepStartScan(std::int64_t stamp_us, bool start_scan, std::size_t
     if (map < 0) return;
     start_region_ = map;
     start_in_region_ = Between(regions_[map].anchor, pose());
-    // Not for a loaded map (its frame is the saved one), nor without a gyro.
+    // Nothing without a heading sensor. (A loaded map has no start scan: its frame is the saved one.)
     if (!c.enabled || !have_yaw || !start_scans_.Begin(&regions_.pool(), stamp_us, yaw, wheel_turns)) return;
     accepted = true;
   } else {

@@ -10,7 +10,8 @@
 // So a few scans of the first seconds are kept with their heading less the gyro's turn since the
 // start; at the end of the run each is registered again against the finished first map, and its
 // heading there less the gyro's turn is the start's heading in that map, less the gyro's bias times
-// the time. A least-squares line over the kept scans gives the start's heading at t = 0.
+// the time. A least-squares line over the kept scans gives the start's heading at t = 0. Without a
+// gyro, wheel ticks that carry only an IMU's heading serve as one (the front end decides at the end).
 //
 // Storage: kTiles tiles borrowed from the regional maps' tile pool (no RAM of its own, the pool's
 // size and the map file unchanged). Each kept scan has kWordsPerScan int16 words: a header (its
