@@ -119,8 +119,6 @@ class FrontEnd {
   // reference (a loop-closure search in progress is cancelled) and gives the kept scans' tiles
   // back. Once refined, later calls return the same offset.
   StartRefinement RefineStart();
-  // The offset the start was turned by at the end (NaN: not refined).
-  float start_refined_offset_rad() const { return start_offset_rad_; }
 
   // Loading a saved map (core/persistence/map_reader.hpp; front_end_restore.cpp), after Init:
   // RestoreRegion appends the regional maps in their saved order (nullptr: pool full); after the
@@ -226,8 +224,8 @@ class FrontEnd {
   // A lost robot: the start heading's fit aborts, the start scans keep no more.
   void StopStartFits();
   // Before the regional map takes the scan: the start scan begins the kept start scans (with a
-  // gyro yaw), later ones are kept when due; a pool that ran out takes their tiles back
-  // (front_end_start_scans.cpp).
+  // gyro's yaw, or the wheels' heading), later ones are kept when due; a pool that ran out takes
+  // their tiles back (front_end_start_scans.cpp).
   void KeepStartScan(std::int64_t stamp_us, bool start_scan, std::size_t hits, bool accepted);
   // The gyro's yaw at the start scan (false: no gyro).
   bool StartGyroYaw(std::int64_t stamp_us, float* yaw) const;

@@ -10,6 +10,10 @@ namespace dpcr {
 
 void FrontEnd::KeepStartScan(std::int64_t stamp_us, bool start_scan, std::size_t hits, bool accepted) {
   const StartScansConfig& c = config_.front_end.start_scans;
+  // The maps come first: a pool that ran out takes the tiles back (and lends none).
+  const bool pool_ran_out = counters_.updates_dropped_pool_full > 0;
+  if (pool_ran_out && start_scans_.holds_tiles()) start_scans_.Release(&regions_.pool());
+  if (!start_scan && !start_scans_.keeping()) return;  // past the window: no yaw to look up
   // The gyro's yaw; without a gyro, the wheels' heading, kept in case the wheel check finds the
   // ticks to carry only an IMU's heading (as real recordings were converted).
   float yaw = 0.0f;
@@ -23,15 +27,10 @@ void FrontEnd::KeepStartScan(std::int64_t stamp_us, bool start_scan, std::size_t
     start_region_ = map;
     start_in_region_ = Between(regions_[map].anchor, pose());
     // Nothing without a heading sensor. (A loaded map has no start scan: its frame is the saved one.)
-    if (!c.enabled || !have_yaw || !start_scans_.Begin(&regions_.pool(), stamp_us, yaw, wheel_turns)) return;
+    if (!c.enabled || pool_ran_out || !have_yaw || !start_scans_.Begin(&regions_.pool(), stamp_us, yaw, wheel_turns)) return;
     accepted = true;
   } else {
     start_scans_.Track(stamp_us, have_yaw, yaw, c);
-  }
-  // The maps come first: a pool that ran out takes the tiles back.
-  if (start_scans_.holds_tiles() && counters_.updates_dropped_pool_full > 0) {
-    start_scans_.Release(&regions_.pool());
-    return;
   }
   if (accepted && regions_.current() == start_region_ && start_scans_.Due(regions_.pool(), stamp_us, c)) {
     start_scans_.Keep(&regions_.pool(), stamp_us, Between(regions_[start_region_].anchor, pose()), Span<const Point2>(s_.hits.data(), hits));
