@@ -157,6 +157,15 @@ struct StartScansConfig {
   int min_scans = 8;              // registered again and accepted
   float max_offset_rad = 0.035f;  // 2 degrees: more is not a map's tilt
   float max_bias_rad_s = 0.02f;   // 1.1 degrees/s: a gyro further off is not fitted
+  // Without wheels measuring the translation (a gyro alone, heading-only ticks) a young submap can
+  // hold the pose while the robot drives off along a room it cannot see the end of: the whole run
+  // is then mapped metres from its start. At the end the start scan is registered where it was
+  // recorded and searched for within locate_window_m of it in the finished first map (the global
+  // localiser's local round; its pose taken only when it explains clearly more of the scan), and
+  // the start moves to the pose found when that is at least locate_min_shift_m away (below that
+  // the placement's own error is as large; FrontEnd::LocateStart). 0: off.
+  float locate_window_m = 3.0f;
+  float locate_min_shift_m = 0.1f;
 };
 
 struct FrontEndConfig {

@@ -68,6 +68,7 @@ Status FrontEnd::Init(const MapperConfig& config) {
   start_heading_.Reset();
   start_scans_.Reset(&regions_.pool());
   start_offset_rad_ = NAN;
+  start_shift_mm_[0] = start_shift_mm_[1] = 0;
   start_region_ = -1;
   bent_kept_out_ = 0;
   last_stamp_us_ = -1;
@@ -485,14 +486,17 @@ Pose2 FrontEnd::ScanWorldPose(std::int64_t stamp_us, int region, const Pose2& in
     world = Pose2{0.0f, 0.0f, fe_counters_.grid_turn_rad} * world;
   }
   const bool refined = !std::isnan(start_offset_rad_);
+  const bool moved = start_shift_mm_[0] != 0 || start_shift_mm_[1] != 0;
   const bool fitted = start_heading_.outcome() == StartHeadingFit::Outcome::kApplied;
-  const std::int64_t start_us = refined ? start_scans_.start_stamp_us() : start_heading_.start_stamp_us();
-  if ((!refined && !fitted) || stamp_us > start_us || start_region_ < 0 || start_region_ >= regions_.size()) {
+  const std::int64_t start_us = refined || moved ? start_scans_.start_stamp_us() : start_heading_.start_stamp_us();
+  if ((!refined && !moved && !fitted) || stamp_us > start_us || start_region_ < 0 || start_region_ >= regions_.size()) {
     return world;
   }
-  // Turned about the start by the offset: the start lands where the later scans place it.
+  // Moved and turned about the start: the start lands where the later scans place it.
   const Pose2 start = regions_[start_region_].anchor * start_in_region_;
-  return start * Pose2{0.0f, 0.0f, refined ? start_offset_rad_ : start_heading_.offset_rad()} * start.Inverse() * world;
+  const float turn = refined ? start_offset_rad_ : (fitted ? start_heading_.offset_rad() : 0.0f);
+  const Pose2 correction{static_cast<float>(start_shift_mm_[0]) * 1e-3f, static_cast<float>(start_shift_mm_[1]) * 1e-3f, turn};
+  return start * correction * start.Inverse() * world;
 }
 
 bool FrontEnd::SkipScan(const ProjectedScan& projected, const Pose2& predicted) {

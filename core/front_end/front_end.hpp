@@ -115,9 +115,11 @@ class FrontEnd {
   const StartHeadingFit& start_heading() const { return start_heading_; }
   // At the end of a run, before the trajectory is written: the kept start scans registered again
   // against the finished first map place the start in it (start_scans.hpp); ScanWorldPose then
-  // turns the start by that offset instead of the start heading fit's. Builds the regional
-  // reference (a loop-closure search in progress is cancelled) and gives the kept scans' tiles
-  // back. Once refined, later calls return the same offset.
+  // turns the start by that offset instead of the start heading fit's. Without wheels measuring
+  // the translation the start scan is also searched for in that map, and the start moves to where
+  // it is found when that is far from where it was recorded (StartScansConfig::locate_window_m).
+  // Builds the regional reference (a loop-closure search in progress is cancelled) and gives the
+  // kept scans' tiles back. Once refined, later calls return the same offset and move.
   StartRefinement RefineStart();
 
   // Loading a saved map (core/persistence/map_reader.hpp; front_end_restore.cpp), after Init:
@@ -229,6 +231,10 @@ class FrontEnd {
   void KeepStartScan(std::int64_t stamp_us, bool start_scan, std::size_t hits, bool accepted);
   // The gyro's yaw at the start scan (false: no gyro).
   bool StartGyroYaw(std::int64_t stamp_us, float* yaw) const;
+  // RefineStart's parts: the kept scans' headings in the finished first map (the offset), and the
+  // start scan searched for in it (the move; the global localiser's local round, run to its end).
+  void FitStartInMap(StartRefinement* out);
+  void LocateStart(StartRefinement* out);
   // The run's first scan not skipped, into a new map: turns the world frame about its origin, and
   // the robot's poses in it (pose_, `previous`, `predicted`), so that the scan's walls lie off the
   // grid's axes when they lie along them (FrontEndConfig::grid_turn_rad; recorded in fe_counters_).
@@ -385,6 +391,9 @@ class FrontEnd {
   bool start_wheel_turns_ = false;
   bool bent_ = false;             // the last scan's de-skew was doubtful (RegisterRedeskewed)
   std::uint8_t bent_kept_out_ = 0;  // bent scans kept out in a row
+  // RefineStart's move of the start (StartScansConfig::locate_window_m), millimetres in the
+  // recorded start's frame (in what was padding).
+  std::int16_t start_shift_mm_[2] = {0, 0};
   std::int64_t grid_turn_stamp_us_ = 0;  // the scan that could turn it; scans before it were in the old frame
   float step_turn_ = 0.0f;
   float start_offset_rad_ = NAN;  // RefineStart's (NaN: not refined)

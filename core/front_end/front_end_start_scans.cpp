@@ -1,9 +1,11 @@
 // The kept start scans (core/front_end/start_scans.hpp): kept during the run's first seconds,
-// registered again at its end to place the start in the finished first map.
+// registered again at its end to place the start in the finished first map; without wheels
+// measuring the translation, the start scan searched for in that map too.
 #include <cmath>
 
 #include "core/front_end/first_registration.hpp"
 #include "core/front_end/front_end.hpp"
+#include "core/front_end/reference_for_noise.hpp"
 #include "core/registration/pivot_frame.hpp"
 
 namespace dpcr {
@@ -47,43 +49,104 @@ bool FrontEnd::StartGyroYaw(std::int64_t stamp_us, float* yaw) const {
 StartRefinement FrontEnd::RefineStart() {
   StartRefinement out;
   out.kept = start_scans_.size();
-  if (!std::isnan(start_offset_rad_)) {
-    out.refined = true;
-    out.offset_rad = start_offset_rad_;
+  if (!std::isnan(start_offset_rad_) || start_shift_mm_[0] != 0 || start_shift_mm_[1] != 0) {
+    // Done before: the same answer.
+    out.refined = !std::isnan(start_offset_rad_);
+    out.offset_rad = out.refined ? start_offset_rad_ : 0.0f;
+    out.located = out.moved = start_shift_mm_[0] != 0 || start_shift_mm_[1] != 0;
+    out.shift = Pose2{static_cast<float>(start_shift_mm_[0]) * 1e-3f, static_cast<float>(start_shift_mm_[1]) * 1e-3f, 0.0f};
     return out;
   }
   const StartScansConfig& c = config_.front_end.start_scans;
   // Turns from wheels that measure the translation too err with the distance driven (a wheel's
   // radius), not with time: not a gyro's (as for the start heading's fit).
   const bool wheels = start_scans_.wheel_turns() && !wheel_check_.translation_ignored();
-  if (out.kept < c.min_scans || wheels || start_region_ < 0 || start_region_ >= regions_.size()) {
-    start_scans_.Release(&regions_.pool());
-    return out;
+  const bool in_map = start_region_ >= 0 && start_region_ < regions_.size() && start_scans_.holds_tiles();
+  const bool fit = in_map && out.kept >= c.min_scans && !wheels;
+  // Only a start the wheels did not hold in place can have slid.
+  const bool locate = in_map && out.kept >= 1 && c.locate_window_m > 0.0f && (!WheelsMeasured() || wheel_check_.translation_ignored());
+  if (fit || locate) {
+    if (back_end_.searching()) back_end_.CancelLoopClosure();
+    if (fit) FitStartInMap(&out);
+    if (locate) LocateStart(&out);
   }
-  if (back_end_.searching()) back_end_.CancelLoopClosure();
+  start_scans_.Release(&regions_.pool());
+  return out;
+}
+
+void FrontEnd::FitStartInMap(StartRefinement* out) {
+  const StartScansConfig& c = config_.front_end.start_scans;
   const int maps[2] = {start_region_, -1};
   BuildRegionReference(maps, 1);
   InvalidateRegionReference();
   // Registered from where they were placed then; no prior: the finished map decides.
   const PlicpConfig plicp = FirstRegistrationBase(config_, false);
   float turns[StartScans::kMaxKept];
-  for (int i = 0; i < out.kept; ++i) {
+  for (int i = 0; i < out->kept; ++i) {
     const std::size_t n = start_scans_.Points(regions_.pool(), i, s_.target);
     const Point2 pivot = RecentreOnCentroid(Span<Point2>(s_.target.data(), n));
     const RegistrationResult r = RegisterImproved(*s_.region_reference, Span<const Point2>(s_.target.data(), n),
                                                   Pose2{pivot.x, pivot.y, 0.0f}, nullptr, plicp, s_.correspondences);
     turns[i] = r.verdict == Status::kOk ? r.pose.theta : NAN;
-    if (r.verdict == Status::kOk) ++out.registered;
+    if (r.verdict == Status::kOk) ++out->registered;
   }
   StartOffsetFit fit;
   const bool fitted = FitStartOffset(start_scans_, regions_.pool(), turns, start_in_region_.theta, c, &fit);
-  out.offset_rad = fit.offset_rad;
-  out.bias_rad_s = fit.bias_rad_s;
-  out.offset_se_rad = fit.offset_se_rad;
-  out.refined = fitted;
-  if (out.refined) start_offset_rad_ = out.offset_rad;
-  start_scans_.Release(&regions_.pool());
-  return out;
+  out->offset_rad = fit.offset_rad;
+  out->bias_rad_s = fit.bias_rad_s;
+  out->offset_se_rad = fit.offset_se_rad;
+  out->refined = fitted;
+  if (fitted) start_offset_rad_ = fit.offset_rad;
+}
+
+void FrontEnd::LocateStart(StartRefinement* out) {
+  const StartScansConfig& c = config_.front_end.start_scans;
+  // The start scan (kept first), back in the robot's frame at its recorded pose.
+  const std::size_t n = start_scans_.Points(regions_.pool(), 0, s_.target);
+  const PointTransform to_robot(start_in_region_.Inverse());
+  for (std::size_t i = 0; i < n; ++i) s_.target[i] = to_robot(s_.target[i]);
+  const Span<const Point2> points(s_.target.data(), n);
+  // Registered where it was recorded: a start that slid a little is found there.
+  const int maps[2] = {start_region_, -1};
+  BuildRegionReference(maps, 1);
+  InvalidateRegionReference();
+  const RegistrationResult here =
+      RegisterImproved(*s_.region_reference, points, start_in_region_, nullptr, FirstRegistrationBase(config_, false), s_.correspondences);
+  // Searched for around it (the global localiser's local round, run to its end): a start that slid
+  // metres, with the heading sensor's heading.
+  constexpr float kHeadingWindowRad = 0.1f;
+  localiser_.Cancel();
+  localiser_.Drop();
+  localiser_.BeginLocal(s_.back_end, points, config_.localisation, start_region_, start_in_region_, c.locate_window_m);
+  localiser_.LimitHeadings((regions_[start_region_].anchor * start_in_region_).theta, kHeadingWindowRad);
+  constexpr int kMaxSteps = 1000;  // each step is bounded; a round over one map's window ends in a few
+  const Span<const RegionalMap> regional(regions_.maps().data(), regions_.maps().size());
+  const ReferenceConfig reference = ReferenceForNoise(config_.front_end.region_reference, config_);
+  GlobalFix fix;
+  Status st = Status::kNotEnoughData;
+  for (int i = 0; i < kMaxSteps && st == Status::kNotEnoughData; ++i) {
+    st = localiser_.Step(s_.back_end, regional, config_.front_end.region_width_m, reference, config_.localisation, config_.back_end, &fix);
+  }
+  localiser_.Cancel();
+  InvalidateRegionReference();  // the search borrowed its table
+  // The search's pose only when it explains clearly more of the scan than the recorded place does:
+  // the map can hold a look-alike, and the recorded place is right unless the start slid.
+  constexpr float kInlierMargin = 0.1f;
+  const bool found = st == Status::kOk && fix.map == start_region_;
+  const bool here_ok = here.verdict == Status::kOk;
+  if (found && (!here_ok || fix.inlier_ratio >= here.inlier_ratio + kInlierMargin)) {
+    out->shift = Between(start_in_region_, fix.in_map);
+  } else if (here_ok) {
+    out->shift = Between(start_in_region_, here.pose);
+  } else {
+    return;
+  }
+  out->located = true;
+  const float shift_m = std::hypot(out->shift.x, out->shift.y);
+  if (shift_m < c.locate_min_shift_m || shift_m > c.locate_window_m) return;
+  out->moved = true;
+  start_shift_mm_[0] = static_cast<std::int16_t>(std::lround(out->shift.x * 1000.0f));
+  start_shift_mm_[1] = static_cast<std::int16_t>(std::lround(out->shift.y * 1000.0f));
 }
 
 }  // namespace dpcr

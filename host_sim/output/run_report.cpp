@@ -203,7 +203,11 @@ nlohmann::json StartRefinementMetrics(const dpcr::StartRefinement& r) {
           {"registered", r.registered},
           {"offset_deg", fitted ? nlohmann::json(r.offset_rad * 180.0 / M_PI) : nlohmann::json()},
           {"gyro_bias_deg_s", fitted ? nlohmann::json(r.bias_rad_s * 180.0 / M_PI) : nlohmann::json()},
-          {"offset_se_deg", fitted && std::isfinite(r.offset_se_rad) ? nlohmann::json(r.offset_se_rad * 180.0 / M_PI) : nlohmann::json()}};
+          {"offset_se_deg", fitted && std::isfinite(r.offset_se_rad) ? nlohmann::json(r.offset_se_rad * 180.0 / M_PI) : nlohmann::json()},
+          // The start scan found in the finished first map (without wheels measuring the translation).
+          {"located", r.located},
+          {"moved", r.moved},
+          {"shift_m", r.located ? nlohmann::json{r.shift.x, r.shift.y} : nlohmann::json()}};
 }
 
 }  // namespace dpcr::output
