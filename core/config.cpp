@@ -142,8 +142,7 @@ bool FrontEndOk(const FrontEndConfig& f, const GridConfig& g) {
   // The kept scans' times are int16 milliseconds (start_scans.hpp): a window of 30 s at most.
   const StartScansConfig& k = f.start_scans;
   const bool kept = AboveUpTo(k.window_s, 0.0f, 30.0f) && AboveUpTo(k.every_s, 0.0f, k.window_s) &&
-                    In(k.min_scans, 3, 1000) && AboveUpTo(k.max_offset_rad, 0.0f, 0.35f) && AboveUpTo(k.max_bias_rad_s, 0.0f, 1.0f) &&
-                    In(k.locate_window_m, 0.0f, 10.0f) && In(k.locate_min_shift_m, 0.0f, k.locate_window_m);
+                    In(k.min_scans, 3, 1000) && AboveUpTo(k.max_offset_rad, 0.0f, 0.35f) && AboveUpTo(k.max_bias_rad_s, 0.0f, 1.0f);
   return submap && periods && regions && registration && turn && start && kept;
 }
 

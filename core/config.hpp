@@ -152,20 +152,18 @@ struct StartHeadingConfig {
 // registered again against the first map at the end of the run (Mapper::RefineStart).
 struct StartScansConfig {
   bool enabled = true;
+  // Without wheels measuring the translation (a gyro alone, heading-only ticks) a young submap can
+  // hold the pose while the robot drives off along a room it cannot see the end of: the whole run
+  // is then mapped metres from its start. At the end the start scan is registered where it was
+  // recorded and searched for within 3 m of it in the finished first map, and the start moves to
+  // the pose found when that is 0.1 m or more away (FrontEnd::LocateStart). A switch only, beside
+  // `enabled`: the vacuum profile has no byte left for a setting of another size.
+  bool locate = true;
   float window_s = 10.0f;
   float every_s = 0.3f;
   int min_scans = 8;              // registered again and accepted
   float max_offset_rad = 0.035f;  // 2 degrees: more is not a map's tilt
   float max_bias_rad_s = 0.02f;   // 1.1 degrees/s: a gyro further off is not fitted
-  // Without wheels measuring the translation (a gyro alone, heading-only ticks) a young submap can
-  // hold the pose while the robot drives off along a room it cannot see the end of: the whole run
-  // is then mapped metres from its start. At the end the start scan is registered where it was
-  // recorded and searched for within locate_window_m of it in the finished first map (the global
-  // localiser's local round; its pose taken only when it explains clearly more of the scan), and
-  // the start moves to the pose found when that is at least locate_min_shift_m away (below that
-  // the placement's own error is as large; FrontEnd::LocateStart). 0: off.
-  float locate_window_m = 3.0f;
-  float locate_min_shift_m = 0.1f;
 };
 
 struct FrontEndConfig {

@@ -82,8 +82,7 @@ void ForEachField(M& m, dpcr::MapperConfig& c) {
   m(f.start_heading.window_s), m(f.start_heading.skip_s), m(f.start_heading.min_samples),
       m(f.start_heading.min_offset_rad), m(f.start_heading.max_offset_rad), m(f.start_heading.max_bias_rad_s);
   m(f.start_scans.enabled), m(f.start_scans.window_s), m(f.start_scans.every_s), m(f.start_scans.min_scans),
-      m(f.start_scans.max_offset_rad), m(f.start_scans.max_bias_rad_s), m(f.start_scans.locate_window_m),
-      m(f.start_scans.locate_min_shift_m);
+      m(f.start_scans.max_offset_rad), m(f.start_scans.max_bias_rad_s), m(f.start_scans.locate);
   Plicp(m, f.second_registration);
   Reference(m, f.submap_reference);
   Reference(m, f.region_reference);

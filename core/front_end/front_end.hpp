@@ -117,9 +117,10 @@ class FrontEnd {
   // against the finished first map place the start in it (start_scans.hpp); ScanWorldPose then
   // turns the start by that offset instead of the start heading fit's. Without wheels measuring
   // the translation the start scan is also searched for in that map, and the start moves to where
-  // it is found when that is far from where it was recorded (StartScansConfig::locate_window_m).
-  // Builds the regional reference (a loop-closure search in progress is cancelled) and gives the
-  // kept scans' tiles back. Once refined, later calls return the same offset and move.
+  // it is found when that is far from where it was recorded (StartScansConfig::locate).
+  // Builds the regional reference (a loop-closure search in progress is cancelled, and so is a
+  // lost robot's search: the start's uses the localiser) and gives the kept scans' tiles back.
+  // Once refined, later calls return the same offset and move.
   StartRefinement RefineStart();
 
   // Loading a saved map (core/persistence/map_reader.hpp; front_end_restore.cpp), after Init:
@@ -391,7 +392,7 @@ class FrontEnd {
   bool start_wheel_turns_ = false;
   bool bent_ = false;             // the last scan's de-skew was doubtful (RegisterRedeskewed)
   std::uint8_t bent_kept_out_ = 0;  // bent scans kept out in a row
-  // RefineStart's move of the start (StartScansConfig::locate_window_m), millimetres in the
+  // RefineStart's move of the start (StartScansConfig::locate), millimetres in the
   // recorded start's frame (in what was padding).
   std::int16_t start_shift_mm_[2] = {0, 0};
   std::int64_t grid_turn_stamp_us_ = 0;  // the scan that could turn it; scans before it were in the old frame

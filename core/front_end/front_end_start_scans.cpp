@@ -64,7 +64,7 @@ StartRefinement FrontEnd::RefineStart() {
   const bool in_map = start_region_ >= 0 && start_region_ < regions_.size() && start_scans_.holds_tiles();
   const bool fit = in_map && out.kept >= c.min_scans && !wheels;
   // Only a start the wheels did not hold in place can have slid.
-  const bool locate = in_map && out.kept >= 1 && c.locate_window_m > 0.0f && (!WheelsMeasured() || wheel_check_.translation_ignored());
+  const bool locate = in_map && out.kept >= 1 && c.locate && (!WheelsMeasured() || wheel_check_.translation_ignored());
   if (fit || locate) {
     if (back_end_.searching()) back_end_.CancelLoopClosure();
     if (fit) FitStartInMap(&out);
@@ -100,7 +100,6 @@ void FrontEnd::FitStartInMap(StartRefinement* out) {
 }
 
 void FrontEnd::LocateStart(StartRefinement* out) {
-  const StartScansConfig& c = config_.front_end.start_scans;
   // The start scan (kept first), back in the robot's frame at its recorded pose.
   const std::size_t n = start_scans_.Points(regions_.pool(), 0, s_.target);
   const PointTransform to_robot(start_in_region_.Inverse());
@@ -114,10 +113,12 @@ void FrontEnd::LocateStart(StartRefinement* out) {
       RegisterImproved(*s_.region_reference, points, start_in_region_, nullptr, FirstRegistrationBase(config_, false), s_.correspondences);
   // Searched for around it (the global localiser's local round, run to its end): a start that slid
   // metres, with the heading sensor's heading.
+  // Within 3 m of it (an XV-11's 6 m range, halved: a slide along a room it cannot see across).
+  constexpr float kWindowM = 3.0f;
   constexpr float kHeadingWindowRad = 0.1f;
   localiser_.Cancel();
   localiser_.Drop();
-  localiser_.BeginLocal(s_.back_end, points, config_.localisation, start_region_, start_in_region_, c.locate_window_m);
+  localiser_.BeginLocal(s_.back_end, points, config_.localisation, start_region_, start_in_region_, kWindowM);
   localiser_.LimitHeadings((regions_[start_region_].anchor * start_in_region_).theta, kHeadingWindowRad);
   constexpr int kMaxSteps = 1000;  // each step is bounded; a round over one map's window ends in a few
   const Span<const RegionalMap> regional(regions_.maps().data(), regions_.maps().size());
@@ -143,7 +144,9 @@ void FrontEnd::LocateStart(StartRefinement* out) {
   }
   out->located = true;
   const float shift_m = std::hypot(out->shift.x, out->shift.y);
-  if (shift_m < c.locate_min_shift_m || shift_m > c.locate_window_m) return;
+  // Below this the placement's own error is as large (found within 5 mm where the start held).
+  constexpr float kMinShiftM = 0.1f;
+  if (shift_m < kMinShiftM || shift_m > kWindowM) return;
   out->moved = true;
   start_shift_mm_[0] = static_cast<std::int16_t>(std::lround(out->shift.x * 1000.0f));
   start_shift_mm_[1] = static_cast<std::int16_t>(std::lround(out->shift.y * 1000.0f));

@@ -40,7 +40,7 @@ struct StartRefinement {
   float bias_rad_s = 0.0f;  // the gyro's bias, fitted with it
   float offset_se_rad = NAN;  // the offset's standard error
   // Without wheels measuring the translation: the start scan searched for in the finished first
-  // map (StartScansConfig::locate_window_m). `shift` is the pose found in the recorded start's
+  // map (StartScansConfig::locate). `shift` is the pose found in the recorded start's
   // frame (its heading is the search's, not applied); `moved`: the start moved by its x, y.
   bool located = false;
   bool moved = false;

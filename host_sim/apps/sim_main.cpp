@@ -3,7 +3,6 @@
 //            [--load-map FILE [--start-pose X,Y,THETA | --map-origin X,Y,THETA] [--localise-only]]
 //            [--save-map FILE] [--region-width S] [--kidnaps N [--kidnap-from MIN]]
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -71,7 +70,7 @@ struct Options {
   int drop_behind_cells = -1;       // GridConfig::drop_hits_behind_settled_cells (< 0: the default)
   bool hit_means = true;            // GridConfig::hit_means
   bool start_scans = true;          // StartScansConfig::enabled
-  float start_locate_window_m = -1.0f;  // StartScansConfig::locate_window_m (-1: the configuration's)
+  bool start_locate = true;         // StartScansConfig::locate
   std::vector<double> lidar_noise;  // range sigma base (m), fraction of the range (empty: the lidar model's)
   bool ideal_wheels = false;        // no calibration error, no slips (the wheels' ticks still quantise)
 };
@@ -163,7 +162,7 @@ void AddMapperInputs(const dpcr::MapperConfig& config, nlohmann::json* input) {
   (*input)["unsettle_after"] = {config.grid.unsettle_occupied_after, config.grid.unsettle_free_after};
   (*input)["hit_means"] = config.grid.hit_means;
   (*input)["start_scans"] = config.front_end.start_scans.enabled;
-  (*input)["start_locate_window_m"] = config.front_end.start_scans.locate_window_m;
+  (*input)["start_locate"] = config.front_end.start_scans.locate;
   (*input)["near_weight_range_m"] = config.lidar.near_weight_range_m;
   (*input)["map_max_turn_rate_dps"] = config.lidar.map_max_turn_rate_rad_s * 180.0 / M_PI;
   (*input)["max_acceleration_mps2"] = config.front_end.max_acceleration_mps2;
@@ -228,10 +227,7 @@ dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfi
   if (opt.drop_behind_cells >= 0) config.grid.drop_hits_behind_settled_cells = static_cast<std::uint8_t>(opt.drop_behind_cells);
   config.grid.hit_means = opt.hit_means;
   config.front_end.start_scans.enabled = opt.start_scans;
-  if (opt.start_locate_window_m >= 0.0f) {
-    config.front_end.start_scans.locate_window_m = opt.start_locate_window_m;
-    config.front_end.start_scans.locate_min_shift_m = std::min(config.front_end.start_scans.locate_min_shift_m, opt.start_locate_window_m);
-  }
+  config.front_end.start_scans.locate = opt.start_locate;
   return config;
 }
 
@@ -417,10 +413,10 @@ void AddSensorOptions(CLI::App& app, Options& opt) {
   app.add_option("--start-scans", opt.start_scans, "keep scans of the first seconds with the gyro's turn and, at the end, place "
                  "the start in the finished first map with them (StartScansConfig::enabled; core/front_end/start_scans.hpp)")
       ->default_str("true");
-  app.add_option("--start-locate-window", opt.start_locate_window_m, "without wheels measuring the translation, search for the "
-                 "start scan in the finished first map this far around where it was recorded and move the start there when "
-                 "found 0.1 m or more away (metres; StartScansConfig::locate_window_m, default 3; 0: never)")
-      ->check(CLI::Range(0.0, 10.0));
+  app.add_option("--start-locate", opt.start_locate, "without wheels measuring the translation, search for the start scan "
+                 "in the finished first map within 3 m of where it was recorded and move the start there when found 0.1 m or "
+                 "more away (StartScansConfig::locate)")
+      ->default_str("true");
   app.add_option("--hit-means", opt.hit_means, "regional maps' wall cells learn where in them the returns fall, and their lines "
                  "are fitted there (GridConfig::hit_means; only with a lidar that declares its range noise)")
       ->default_str("true");

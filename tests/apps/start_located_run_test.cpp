@@ -1,5 +1,5 @@
-// End to end: the start scan searched for in the finished first map (StartScansConfig::
-// locate_window_m, FrontEnd::RefineStart). An XV-11 returning 40 % of its readings, with
+// End to end: the start scan searched for in the finished first map (StartScansConfig::locate,
+// FrontEnd::RefineStart). An XV-11 returning 40 % of its readings, with
 // heading-only wheel ticks (no translation measured), on the simulated apartment: at seed 30 the
 // robot drives off along a room whose far end is out of the lidar's reach while the young submap
 // holds the pose, and the whole run is mapped about 2 m from its start. The map is right; the
@@ -52,7 +52,7 @@ double MeanErrorFrom15s(const MapperType& mapper, const std::vector<Record>& rec
   return n > 0 ? sum / n : 0.0;
 }
 
-Located RunApartment(std::uint64_t seed, double valid, Odometry odometry, float locate_window_m) {
+Located RunApartment(std::uint64_t seed, double valid, Odometry odometry, bool locate) {
   dpcr::sim::SimConfig sim_config;
   sim_config.seed = seed;
   sim_config.duration_min = 1.0;
@@ -61,8 +61,7 @@ Located RunApartment(std::uint64_t seed, double valid, Odometry odometry, float 
   dpcr::MapperConfig config;
   config.lidar = dpcr::test::SimulatedLidarConfig(sim_config, dpcr::LidarKind::kXv11);
   config.front_end.gyro_heading = true;  // as dpcr-sim's default for an XV-11
-  config.front_end.start_scans.locate_window_m = locate_window_m;
-  config.front_end.start_scans.locate_min_shift_m = std::fmin(config.front_end.start_scans.locate_min_shift_m, locate_window_m);
+  config.front_end.start_scans.locate = locate;
   auto mapper = std::make_unique<MapperType>();
   REQUIRE(mapper->Init(config) == dpcr::Status::kOk);
   dpcr::sim::Simulation sim(dpcr::sim::LoadBuiltinWorld("apartment"), sim_config);
@@ -93,8 +92,8 @@ Located RunApartment(std::uint64_t seed, double valid, Odometry odometry, float 
 }  // namespace
 
 TEST_CASE("A start that slid is found in the finished map and the trajectory follows the truth") {
-  const Located off = RunApartment(30, 0.4, Odometry::kHeadingTicks, 0.0f);
-  const Located on = RunApartment(30, 0.4, Odometry::kHeadingTicks, dpcr::StartScansConfig{}.locate_window_m);
+  const Located off = RunApartment(30, 0.4, Odometry::kHeadingTicks, false);
+  const Located on = RunApartment(30, 0.4, Odometry::kHeadingTicks, true);
   INFO("seed 30: error from 15 s " << off.after_m << " m without the search; " << on.before_m << " -> " << on.after_m
                                    << " m with it, start moved by (" << on.refinement.shift.x << ", " << on.refinement.shift.y << ") m");
   // The scenario has the failure: without the search the run is mapped ~2 m from its start
@@ -113,8 +112,8 @@ TEST_CASE("A start that did not slide stays where it was recorded") {
   // With 70 % of the readings (the model's) the start holds: found within millimetres of where it
   // was recorded (measured at most 5 mm), not moved, the written trajectory as without the search.
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
-    const Located run = RunApartment(seed, 0.7, Odometry::kHeadingTicks, dpcr::StartScansConfig{}.locate_window_m);
-    const Located off = RunApartment(seed, 0.7, Odometry::kHeadingTicks, 0.0f);
+    const Located run = RunApartment(seed, 0.7, Odometry::kHeadingTicks, true);
+    const Located off = RunApartment(seed, 0.7, Odometry::kHeadingTicks, false);
     INFO("seed " << seed << ": found (" << run.refinement.shift.x << ", " << run.refinement.shift.y << ") m from where recorded");
     CHECK(run.refinement.located);
     CHECK_FALSE(run.refinement.moved);
@@ -124,7 +123,7 @@ TEST_CASE("A start that did not slide stays where it was recorded") {
 }
 
 TEST_CASE("Wheels that measure the translation hold the start and it is not searched for") {
-  const Located run = RunApartment(1, 0.7, Odometry::kWheelsAndGyro, dpcr::StartScansConfig{}.locate_window_m);
+  const Located run = RunApartment(1, 0.7, Odometry::kWheelsAndGyro, true);
   CHECK(run.refinement.refined);  // the heading is still placed
   CHECK_FALSE(run.refinement.located);
   CHECK_FALSE(run.refinement.moved);

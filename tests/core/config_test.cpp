@@ -187,8 +187,6 @@ std::vector<BadField> BadFields() {
       INT_FIELD(front_end.start_scans.min_scans, (std::vector<double>{-1.0, 0.0, 2.0, 1e5})),
       FLOAT_FIELD(front_end.start_scans.max_offset_rad, (std::vector<double>{-1.0, 0.0, kNaN, kInf, 1.0})),
       FLOAT_FIELD(front_end.start_scans.max_bias_rad_s, (std::vector<double>{-1.0, 0.0, kNaN, kInf, 2.0})),
-      FLOAT_FIELD(front_end.start_scans.locate_window_m, (std::vector<double>{-1.0, kNaN, kInf, 11.0})),
-      FLOAT_FIELD(front_end.start_scans.locate_min_shift_m, (std::vector<double>{-1.0, kNaN, kInf, 4.0})),
       // The coarse pose search and the weak-match rebuild, unchecked until fuzz/fuzz_mapper_config.cpp
       // found e.g. kernel_radius_cells = INT_MIN, sigma_m = NaN or 1e-30, or angle_window_rad = NaN
       // overflowing int casts in rotation_search.cpp after a rejected registration.
