@@ -486,7 +486,7 @@ Pose2 FrontEnd::ScanWorldPose(std::int64_t stamp_us, int region, const Pose2& in
     world = Pose2{0.0f, 0.0f, fe_counters_.grid_turn_rad} * world;
   }
   const bool refined = !std::isnan(start_offset_rad_);
-  const bool moved = start_shift_mm_[0] != 0 || start_shift_mm_[1] != 0;
+  const bool moved = StartMoved();
   const bool fitted = start_heading_.outcome() == StartHeadingFit::Outcome::kApplied;
   const std::int64_t start_us = refined || moved ? start_scans_.start_stamp_us() : start_heading_.start_stamp_us();
   if ((!refined && !moved && !fitted) || stamp_us > start_us || start_region_ < 0 || start_region_ >= regions_.size()) {
@@ -495,7 +495,7 @@ Pose2 FrontEnd::ScanWorldPose(std::int64_t stamp_us, int region, const Pose2& in
   // Moved and turned about the start: the start lands where the later scans place it.
   const Pose2 start = regions_[start_region_].anchor * start_in_region_;
   const float turn = refined ? start_offset_rad_ : (fitted ? start_heading_.offset_rad() : 0.0f);
-  const Pose2 correction{static_cast<float>(start_shift_mm_[0]) * 1e-3f, static_cast<float>(start_shift_mm_[1]) * 1e-3f, turn};
+  const Pose2 correction{StartShift().x, StartShift().y, turn};
   return start * correction * start.Inverse() * world;
 }
 

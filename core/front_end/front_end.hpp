@@ -236,6 +236,11 @@ class FrontEnd {
   // start scan searched for in it (the move; the global localiser's local round, run to its end).
   void FitStartInMap(StartRefinement* out);
   void LocateStart(StartRefinement* out);
+  // LocateStart's move (start_shift_mm_) in metres, and whether there is one.
+  Pose2 StartShift() const {
+    return Pose2{static_cast<float>(start_shift_mm_[0]) * 1e-3f, static_cast<float>(start_shift_mm_[1]) * 1e-3f, 0.0f};
+  }
+  bool StartMoved() const { return start_shift_mm_[0] != 0 || start_shift_mm_[1] != 0; }
   // The run's first scan not skipped, into a new map: turns the world frame about its origin, and
   // the robot's poses in it (pose_, `previous`, `predicted`), so that the scan's walls lie off the
   // grid's axes when they lie along them (FrontEndConfig::grid_turn_rad; recorded in fe_counters_).

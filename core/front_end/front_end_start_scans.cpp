@@ -49,12 +49,12 @@ bool FrontEnd::StartGyroYaw(std::int64_t stamp_us, float* yaw) const {
 StartRefinement FrontEnd::RefineStart() {
   StartRefinement out;
   out.kept = start_scans_.size();
-  if (!std::isnan(start_offset_rad_) || start_shift_mm_[0] != 0 || start_shift_mm_[1] != 0) {
+  if (!std::isnan(start_offset_rad_) || StartMoved()) {
     // Done before: the same answer.
     out.refined = !std::isnan(start_offset_rad_);
     out.offset_rad = out.refined ? start_offset_rad_ : 0.0f;
-    out.located = out.moved = start_shift_mm_[0] != 0 || start_shift_mm_[1] != 0;
-    out.shift = Pose2{static_cast<float>(start_shift_mm_[0]) * 1e-3f, static_cast<float>(start_shift_mm_[1]) * 1e-3f, 0.0f};
+    out.located = out.moved = StartMoved();
+    out.shift = StartShift();
     return out;
   }
   const StartScansConfig& c = config_.front_end.start_scans;
