@@ -225,7 +225,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
     StopStartFits();
     pending_.active = false;  // a lost robot maps nothing: the waiting scan is dropped
     RelocaliseScan(beams, motion, since_last_us, &projected, predicted);
-    wheel_check_.AddScan(pose(), Pose2::Identity(), stamp_us, false);
+    wheel_check_.AddScan(Pose2::Identity(), Pose2::Identity(), stamp_us, false);
     last_motion_ = GuessedVelocityStep(Between(previous, pose_), since_last_us);
     last_motion_us_ = static_cast<std::int32_t>(since_last_us);
     FinishScan(since_last_us);
@@ -247,7 +247,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   } else {
     pose_ = predicted;
   }
-  wheel_check_.AddScan(pose(), last_odom_, stamp_us, registered && consecutive_rejections_ == 0);
+  wheel_check_.AddScan(Between(previous, pose_), last_odom_, stamp_us, registered && consecutive_rejections_ == 0);
   last_motion_ = GuessedVelocityStep(Between(previous, pose_), since_last_us);
   if (consecutive_rejections_ > 0) FadeConstantVelocity();
   last_motion_us_ = static_cast<std::int32_t>(since_last_us);

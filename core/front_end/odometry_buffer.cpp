@@ -1,5 +1,6 @@
 #include "core/front_end/odometry_buffer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -61,17 +62,26 @@ Pose2 OdometryBuffer::PoseAt(std::int64_t stamp_us) const {
   const std::size_t n = samples_.size();
   const OdometrySample& newest = samples_[n - 1];
   if (stamp_us >= newest.stamp_us) {
-    // Extrapolate from the newest sample and the last one far enough back to give a velocity.
+    // Extrapolate from the newest sample and one far enough back to give a velocity: at least
+    // kMinVelocitySpanUs, and at least 1 / kMaxExtrapolationRatio of the way ahead, when the
+    // buffer holds it. A velocity measured over a few milliseconds and carried 100 ms ahead
+    // multiplies the stamps' jitter: intel.clf logs bursts of records 1 ms apart that span a
+    // second of motion (35 m/s over 7 ms), and a robot standing after one was predicted 2.6 m down
+    // a corridor, where a look-alike place took it.
+    std::int64_t ahead = stamp_us - newest.stamp_us;
+    if (ahead > kMaxExtrapolationUs) ahead = kMaxExtrapolationUs;
+    const std::int64_t wanted_span = std::max(kMinVelocitySpanUs, ahead / kMaxExtrapolationRatio);
+    std::size_t from = n;  // the sample the velocity is measured from
     for (std::size_t i = n - 1; i-- > 0;) {
       const std::int64_t span = newest.stamp_us - samples_[i].stamp_us;
       if (span < kMinVelocitySpanUs) continue;
-      std::int64_t ahead = stamp_us - newest.stamp_us;
-      if (ahead > kMaxExtrapolationUs) ahead = kMaxExtrapolationUs;
-      const Pose2 step = Between(samples_[i].pose, newest.pose);
-      const float f = static_cast<float>(ahead) / static_cast<float>(span);
-      return newest.pose * Interpolate(Pose2::Identity(), step, f);
+      from = i;
+      if (span >= wanted_span) break;
     }
-    return newest.pose;
+    if (from == n) return newest.pose;
+    const Pose2 step = Between(samples_[from].pose, newest.pose);
+    const float f = static_cast<float>(ahead) / static_cast<float>(newest.stamp_us - samples_[from].stamp_us);
+    return newest.pose * Interpolate(Pose2::Identity(), step, f);
   }
   if (stamp_us <= samples_[0].stamp_us) return samples_[0].pose;
   // Newest first: scans ask about the recent past.

@@ -41,6 +41,9 @@ class OdometryBuffer {
   static constexpr std::int64_t kMaxExtrapolationUs = 100000;
   // Below this spacing two samples give no usable velocity (intel.clf jitters to ~0 ms).
   static constexpr std::int64_t kMinVelocitySpanUs = 5000;
+  // A velocity is carried ahead at most this many times the span it was measured over, when the
+  // buffer reaches back that far (a wheel board at 100 Hz: 40 ms ahead on its 10 ms steps).
+  static constexpr std::int64_t kMaxExtrapolationRatio = 2;
 
  private:
   RingBuffer<OdometrySample, kCapacity> samples_;

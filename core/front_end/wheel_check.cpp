@@ -53,35 +53,38 @@ float WheelCheck::heading_scale() const {
   return k < kAgreeRatio ? kAgreeRatio : (k > 1.0f / kAgreeRatio ? 1.0f / kAgreeRatio : k);
 }
 
-void WheelCheck::RestartWindows(const Pose2& pose, const Pose2& wheels, std::int64_t stamp_us) {
-  start_xy_ = Point2{pose.x, pose.y};
+void WheelCheck::RestartWindows(const Pose2& wheels, std::int64_t stamp_us) {
+  moved_xy_ = Point2{0.0f, 0.0f};
   start_wheels_xy_ = Point2{wheels.x, wheels.y};
-  previous_theta_ = pose.theta;
   previous_wheels_theta_ = wheels.theta;
   translation_start_us_ = turn_start_us_ = stamp_us;
   turned_ = wheels_turned_ = 0.0f;
   window_open_ = true;
 }
 
-void WheelCheck::AddScan(const Pose2& pose, const Pose2& wheels, std::int64_t stamp_us, bool tracked) {
+void WheelCheck::AddScan(const Pose2& step, const Pose2& wheels, std::int64_t stamp_us, bool tracked) {
   if (!have_wheels_ || !tracked) {
     // An untracked scan says nothing of where the robot went.
     window_open_ = wheels_short_ = false;
     return;
   }
   if (!window_open_) {
-    RestartWindows(pose, wheels, stamp_us);
+    RestartWindows(wheels, stamp_us);
     return;
   }
-  CheckTranslation(pose, wheels, stamp_us);
-  CheckHeading(pose, wheels, stamp_us);
+  const float c = std::cos(registered_heading_), s = std::sin(registered_heading_);
+  moved_xy_.x += c * step.x - s * step.y;
+  moved_xy_.y += s * step.x + c * step.y;
+  registered_heading_ = NormalizeAngle(registered_heading_ + step.theta);
+  CheckTranslation(wheels, stamp_us);
+  CheckHeading(step, wheels, stamp_us);
 }
 
-void WheelCheck::CheckTranslation(const Pose2& pose, const Pose2& wheels, std::int64_t stamp_us) {
+void WheelCheck::CheckTranslation(const Pose2& wheels, std::int64_t stamp_us) {
   // Net distances, so that a standing robot's jitter adds up to nothing. The window closes once
   // either has gone kWindowDistanceM: the lidar (wheels that stand still or turn only) or the
   // wheels (a robot stuck on a rug's edge whose wheels spin on).
-  const float moved = std::hypot(pose.x - start_xy_.x, pose.y - start_xy_.y);
+  const float moved = std::hypot(moved_xy_.x, moved_xy_.y);
   const float wheeled = std::hypot(wheels.x - start_wheels_xy_.x, wheels.y - start_wheels_xy_.y);
   wheels_short_ = moved >= kDoubtDistanceM && wheeled < kMissRatio * moved;
   const float longer = std::fmax(moved, wheeled), shorter = std::fmin(moved, wheeled);
@@ -92,18 +95,17 @@ void WheelCheck::CheckTranslation(const Pose2& pose, const Pose2& wheels, std::i
     if ((miss || agree) && translation_.Vote(agree) && translation_.rejected) ++switched_off_;
   }
   if (longer >= kWindowDistanceM || stamp_us - translation_start_us_ > kWindowMaxUs) {
-    start_xy_ = Point2{pose.x, pose.y};
+    moved_xy_ = Point2{0.0f, 0.0f};
     start_wheels_xy_ = Point2{wheels.x, wheels.y};
     translation_start_us_ = stamp_us;
     wheels_short_ = false;
   }
 }
 
-void WheelCheck::CheckHeading(const Pose2& pose, const Pose2& wheels, std::int64_t stamp_us) {
+void WheelCheck::CheckHeading(const Pose2& step, const Pose2& wheels, std::int64_t stamp_us) {
   // Signed turns summed scan by scan (a net angle would wrap).
-  turned_ += NormalizeAngle(pose.theta - previous_theta_);
+  turned_ += NormalizeAngle(step.theta);
   wheels_turned_ += NormalizeAngle(wheels.theta - previous_wheels_theta_);
-  previous_theta_ = pose.theta;
   previous_wheels_theta_ = wheels.theta;
   if (std::fabs(turned_) >= kWindowTurnRad) {
     const float turn_ratio = wheels_turned_ / turned_;  // negative: the wheels turn the other way

@@ -19,12 +19,15 @@ class WheelCheck {
  public:
   // Every odometry sample as it arrives, before Filter.
   void AddOdometry(const OdometrySample& sample);
-  // After each scan: `pose` registered (in any fixed frame), `wheels` the wheel odometry's pose at
-  // the same stamp (OdometryBuffer::PoseAt: the newest sample is a revolution later, and a turn
-  // window closed on it overstates the wheels' turn by 10 % and more); `tracked` when its first
-  // registration was accepted and the robot was not lost (only then does `pose` say where the
-  // robot went).
-  void AddScan(const Pose2& pose, const Pose2& wheels, std::int64_t stamp_us, bool tracked);
+  // After each scan: `step` the registered motion since the last scan (in the last scan's frame),
+  // `wheels` the wheel odometry's pose at the same stamp (OdometryBuffer::PoseAt: the newest sample
+  // is a revolution later, and a turn window closed on it overstates the wheels' turn by 10 % and
+  // more); `tracked` when its first registration was accepted and the robot was not lost (only
+  // then does `step` say where the robot went). A step, not a pose: the front end's pose jumps
+  // when the back end corrects its region or the submap's frame moves, and on intel.clf such
+  // jumps of 0.3-0.5 m counted as lidar motion the wheels missed (21 windows in one replay, three
+  // in a row with the robot standing: its wheels were set aside and the robot was lost for 690 s).
+  void AddScan(const Pose2& step, const Pose2& wheels, std::int64_t stamp_us, bool tracked);
   // The sample the front end should use: unchanged while the wheels are trusted; otherwise a
   // sample without wheels whose yaw rate is the wheels' heading change (when the wheels see the
   // turns and no gyro rate came with it).
@@ -82,9 +85,9 @@ class WheelCheck {
     std::uint8_t run = 0;  // consecutive votes against the current state
     bool Vote(bool agrees);  // true when the state flipped
   };
-  void RestartWindows(const Pose2& pose, const Pose2& wheels, std::int64_t stamp_us);
-  void CheckTranslation(const Pose2& pose, const Pose2& wheels, std::int64_t stamp_us);
-  void CheckHeading(const Pose2& pose, const Pose2& wheels, std::int64_t stamp_us);
+  void RestartWindows(const Pose2& wheels, std::int64_t stamp_us);
+  void CheckTranslation(const Pose2& wheels, std::int64_t stamp_us);
+  void CheckHeading(const Pose2& step, const Pose2& wheels, std::int64_t stamp_us);
 
   // (Ordered by size: the vacuum profile's static RAM is counted to the byte.)
   std::int64_t wheel_stamp_us_ = 0;
@@ -93,11 +96,12 @@ class WheelCheck {
   std::int64_t turn_start_us_ = 0;
   float wheel_theta_ = 0.0f;      // the newest wheel heading received
   float wheel_turn_rate_ = 0.0f;  // rad/s between the two newest wheel samples
-  // Where the translation window started (registered and wheel positions); the last headings
-  // and the signed turns summed since the turn window started.
-  Point2 start_xy_;
+  // The registered steps summed since the translation window started (in a frame of the check's
+  // own: `registered_heading_` is the registered turns summed), and where the wheels were then; the wheels'
+  // last heading and the signed turns summed since the turn window started.
+  Point2 moved_xy_;
   Point2 start_wheels_xy_;
-  float previous_theta_ = 0.0f;
+  float registered_heading_ = 0.0f;
   float previous_wheels_theta_ = 0.0f;
   float turned_ = 0.0f;
   float wheels_turned_ = 0.0f;

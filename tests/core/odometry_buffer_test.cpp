@@ -42,6 +42,23 @@ TEST_CASE("Jittered stamps give no velocity explosion, and steps back are counte
   REQUIRE(b.PoseAt(500).x == Approx(0.6f));
 }
 
+TEST_CASE("A burst of samples stamped a millisecond apart is not taken for a speed") {
+  // As intel.clf logs them: a robot at 0.2 m/s, a record every 0.2 s, then ten records that
+  // cover 0.3 m of motion stamped 1 ms apart. Measured over 5 ms and carried 100 ms ahead, that
+  // burst says 3 m (30 m/s); measured over at least half the 100 ms it is carried, 0.16 m.
+  dpcr::OdometryBuffer b;
+  for (int k = 0; k <= 5; ++k) b.Add(At(k * 200000, 0.04f * static_cast<float>(k)));
+  for (int k = 1; k <= 10; ++k) b.Add(At(1000000 + k * 1000, 0.2f + 0.03f * static_cast<float>(k)));
+  const float ahead = b.PoseAt(1010000 + 100000).x - 0.5f;
+  CHECK(ahead >= 0.0f);
+  CHECK(ahead < 0.2f);
+  // Samples at a steady rate extrapolate at that rate however far back the span reaches.
+  dpcr::OdometryBuffer steady;
+  for (int k = 0; k <= 50; ++k) steady.Add(At(k * 10000, 0.003f * static_cast<float>(k)));
+  CHECK(steady.PoseAt(500000 + 30000).x == Approx(0.159f));
+  CHECK(steady.PoseAt(500000 + 5000).x == Approx(0.1515f));
+}
+
 TEST_CASE("The gyro rate integrates to a yaw between samples, and absent rates give none") {
   dpcr::OdometryBuffer buf;
   float yaw = 0.0f;
