@@ -117,6 +117,7 @@ class WheelCheck {
   // The open translation window so far: the wheels under kMissRatio of the registered translation.
   bool wheels_short_ = false;
   bool translation_confirmed_ = false;  // a window has shown the wheels' translation right
+  bool miss_wheels_long_ = false;  // the last missed window: the wheels went the farther
 };
 
 }  // namespace dpcr

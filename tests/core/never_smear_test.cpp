@@ -111,7 +111,8 @@ TEST_CASE("A rejected scan under an uncertain prediction goes into no map, a str
   REQUIRE(c.longest_streak_scans == 16);
   REQUIRE(c.streak_us == 16 * 100000);
   REQUIRE(c.longest_streak_us == 16 * 100000);
-  REQUIRE(c.submap_restarts == 1);  // at the 10th rejection in a row
+  // At every submap_restart_after_rejections-th rejection in a row (5: the 5th, 10th and 15th).
+  REQUIRE(c.submap_restarts == 16 / static_cast<std::uint32_t>(dpcr::FrontEndConfig{}.submap_restart_after_rejections));
   // A run that ends in a streak says lost.
   REQUIRE(r.m->status() == dpcr::MapperStatus::kLost);
   REQUIRE(c.lost_scans == 7);  // rejections 10 to 16

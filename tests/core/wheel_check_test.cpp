@@ -145,3 +145,42 @@ TEST_CASE("WheelCheck: wheels that spin on while the lidar sees the robot stand 
   CHECK(check.translation_ignored());
   CHECK(check.translation_misses() == 3);
 }
+
+TEST_CASE("WheelCheck: logged odometry that stalls and then catches up is not switched off") {
+  // As mit-csail.clf logs it: the wheels' pose stands still for two windows while the robot
+  // drives on, then jumps the whole way in one step. Two misses one way and one the other are
+  // neither wheels that miss the motion nor wheels that spin on.
+  WheelCheck check;
+  Pose2 p = Drive(&check, Wheels::kTrue, 5.0f);
+  REQUIRE_FALSE(check.translation_doubted());
+  std::int64_t t = 5000000;
+  for (int cycle = 0; cycle < 5; ++cycle) {
+    const Pose2 stalled = p;
+    // 0.75 m registered (two windows and a half) with the wheels standing still...
+    for (int i = 1; i <= 30; ++i) {
+      const Pose2 before = p;
+      p = p * Pose2{0.025f, 0.0f, 0.0f};
+      t += 100000;
+      check.AddOdometry(WheelSample(t, stalled, Wheels::kTrue));
+      check.AddScan(dpcr::Between(before, p), stalled, t, true);
+    }
+    // ...then the wheels catch up in one sample while the robot stands.
+    t += 100000;
+    check.AddOdometry(WheelSample(t, p, Wheels::kTrue));
+    check.AddScan(Pose2::Identity(), p, t, true);
+    p = Drive(&check, Wheels::kTrue, 2.0f, p, t);
+    t += 2000000;
+    CHECK_FALSE(check.translation_ignored());
+  }
+  CHECK(check.translation_misses() >= 5);  // they are misses, just not one fault
+  // The same stall without the catch-up (the ticks carry no translation): switched off.
+  const Pose2 stalled = p;
+  for (int i = 1; i <= 60 && !check.translation_ignored(); ++i) {
+    const Pose2 before = p;
+    p = p * Pose2{0.025f, 0.0f, 0.0f};
+    t += 100000;
+    check.AddOdometry(WheelSample(t, stalled, Wheels::kTrue));
+    check.AddScan(dpcr::Between(before, p), stalled, t, true);
+  }
+  CHECK(check.translation_ignored());
+}
