@@ -42,7 +42,7 @@ class OdometryBuffer {
   // Below this spacing two samples give no usable velocity (intel.clf jitters to ~0 ms).
   static constexpr std::int64_t kMinVelocitySpanUs = 5000;
   // A velocity is carried ahead at most this many times the span it was measured over, when the
-  // buffer reaches back that far (a wheel board at 100 Hz: 40 ms ahead on its 10 ms steps).
+  // buffer reaches back that far (a wheel board at 100 Hz: up to 20 ms ahead on its 10 ms step).
   static constexpr std::int64_t kMaxExtrapolationRatio = 2;
 
  private:
