@@ -495,7 +495,8 @@ Pose2 FrontEnd::ScanWorldPose(std::int64_t stamp_us, int region, const Pose2& in
   // Moved and turned about the start: the start lands where the later scans place it.
   const Pose2 start = regions_[start_region_].anchor * start_in_region_;
   const float turn = refined ? start_offset_rad_ : (fitted ? start_heading_.offset_rad() : 0.0f);
-  const Pose2 correction{StartShift().x, StartShift().y, turn};
+  Pose2 correction = StartShift();  // the move, then the turn about the start
+  correction.theta = turn;
   return start * correction * start.Inverse() * world;
 }
 
