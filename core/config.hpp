@@ -274,6 +274,15 @@ struct FrontEndConfig {
   // degenerate one: the office alike, the sparse gyro-alone set 8 -> 13 of 240. false: the step as
   // registered.
   bool degenerate_guess_forward = true;
+  // Without wheels, while the heading sensor (a gyro, heading-only ticks) measures a turn faster
+  // than FrontEnd::kTurnInPlaceRadS, the first registration's translation prior is as firm as the
+  // wheels' (FrontEnd::PriorXyScale): a vacuum turns in place, or on a tight arc at the speed it
+  // had, so the constant velocity's guess is as good a measure then. With the weak prior, scans
+  // taken while the robot turned in place in a doorway (walls seen edge-on, nothing within reach
+  // across the way) registered degenerate and walked the pose 0.3-0.5 m while it stood. XV-11,
+  // 15 min in the office, runs over 0.2 m: gyro alone seeds 1-40 14 -> 6, 41-100 26 -> 11;
+  // heading-only ticks seeds 1-40 15 -> 7 (docs/back-end.md, "A robot that turns in place").
+  bool turn_holds_translation = true;
   // A first registration rejected from the wheels' prediction is tried again from the constant
   // velocity's when the two differ by more than these (0: never; wheels without a gyro heading).
   // Logged odometry stalls and then catches up in one step (mit-csail.clf: 0.85 m and 50 deg in

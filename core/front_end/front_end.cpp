@@ -612,7 +612,7 @@ void FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, st
       // is followed by one PLICP-only attempt): the streak's cost stays bounded.
       RegisterFirst(*s_.submap_reference, consecutive_rejections_ % 2 == 0 ? s_.search_grid : nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
                     Span<const Point2>(s_.hits.data(), projected->hits), pose_, predicted, f, s_.correspondences, &fe_counters_.search,
-                    PriorXyScale(motion), PriorThetaScale(motion), &plicp);
+                    PriorXyScale(motion, dt_us), PriorThetaScale(motion), &plicp);
   bent_ = false;
   if (!motion.wheels() && dt_us > 0 && !beams.empty()) r = RegisterRedeskewed(beams, motion, dt_us, sparse, projected, r);
   if (r.verdict != Status::kOk && motion.wheels() && !motion.gyro()) r = RegisterFromConstantVelocity(projected->hits, sparse, dt_us, predicted, r);
@@ -635,7 +635,7 @@ bool FrontEnd::ImplausibleWithoutWheels(const Pose2& registered, const Pose2& pr
                                          std::int64_t dt_us) const {
   // Only a guess with no wheels behind it, and only while tracking or the streak holds the
   // velocity (FadeConstantVelocity): once it has faded the registration must be free to catch up.
-  if (PriorXyScale(motion) >= 1.0f || (consecutive_rejections_ > 0 && !HoldsVelocity())) return false;
+  if (WheelsTranslate(motion) || (consecutive_rejections_ > 0 && !HoldsVelocity())) return false;
   if (std::hypot(registered.x - predicted.x, registered.y - predicted.y) > kMaxLeapWithoutWheelsM) return true;
   // The speed only with a heading sensor: the lidar alone mis-turns now and then, and a speed cap
   // then kept out the registrations that found it again (seed 1: 0.218 -> 1.82 m).
@@ -666,7 +666,7 @@ RegistrationResult FrontEnd::RegisterRedeskewed(Span<const Beam> beams, const Sc
   const RegistrationResult second =
       RegisterFirst(*s_.submap_reference, nullptr, &search_grid_version_, fe_counters_.submap_line_builds,
                     Span<const Point2>(s_.hits.data(), projected->hits), pose_, first.pose, f, s_.correspondences, &fe_counters_.search,
-                    PriorXyScale(motion), PriorThetaScale(motion), &plicp);
+                    PriorXyScale(motion, dt_us), PriorThetaScale(motion), &plicp);
   if (second.verdict == Status::kOk) return second;
   if (first.verdict != Status::kOk) return bent_ ? TrackBent(second, first.pose) : second;
   // Only the first one was accepted: its points back.

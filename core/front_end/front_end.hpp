@@ -164,8 +164,16 @@ class FrontEnd {
   // seeds 4 and 6, 2.2 and 2.4 m LocErr_ave; at 0.1 0.10 and 0.05 m; at 0.02 0.27 and 0.08 m).
   static constexpr float kPriorXyWithoutWheels = 0.1f;
   // Wheels whose translation the WheelCheck doubts count as none.
-  float PriorXyScale(const ScanMotion& motion) const {
-    return motion.wheels() && !wheel_check_.translation_doubted() ? 1.0f : kPriorXyWithoutWheels;
+  bool WheelsTranslate(const ScanMotion& motion) const { return motion.wheels() && !wheel_check_.translation_doubted(); }
+  // A measured turn this fast (29 deg/s) is a turn in place or on a tight arc: a vacuum's lanes
+  // are straight, and it turns between them standing (FrontEndConfig::turn_holds_translation).
+  static constexpr float kTurnInPlaceRadS = 0.5f;
+  bool TurningInPlace(std::int64_t dt_us) const {
+    return config_.front_end.turn_holds_translation && step_turn_measured_ && dt_us > 0 &&
+           std::fabs(step_turn_) * 1e6f > kTurnInPlaceRadS * static_cast<float>(dt_us);
+  }
+  float PriorXyScale(const ScanMotion& motion, std::int64_t dt_us) const {
+    return WheelsTranslate(motion) || TurningInPlace(dt_us) ? 1.0f : kPriorXyWithoutWheels;
   }
   // Without wheels the constant velocity guesses the step; one scan after a tracked one the robot
   // cannot be this far from it (a vacuum's acceleration changes a 5 Hz step by centimetres), but

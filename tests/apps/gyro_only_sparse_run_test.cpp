@@ -34,12 +34,19 @@ dpcr::test::Xv11RunResult GyroOnlyRun(std::uint64_t seed, double minutes, dpcr::
 TEST_CASE("A gyro-only robot with sparse scans does not take a correction for a speed") {
   const dpcr::MapperConfig defaults;
   REQUIRE(defaults.front_end.max_acceleration_mps2 > 0.0f);
-  dpcr::MapperConfig unlimited;
+  // The scenario as recorded, with the weak translation prior through turns: held firm there
+  // (FrontEndConfig::turn_holds_translation) the start's turn gives no correction to take for a
+  // speed, and no run drives off with or without the limit (measured: worst 0.018 / 0.013 m).
+  dpcr::MapperConfig limited;
+  limited.front_end.turn_holds_translation = false;
+  dpcr::MapperConfig unlimited = limited;
   unlimited.front_end.max_acceleration_mps2 = 0.0f;
   double worst_with = 0.0, worst_without = 0.0;
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
-    const double with = GyroOnlyRun(seed, 0.5, defaults).mean_error_m, without = GyroOnlyRun(seed, 0.5, unlimited).mean_error_m;
-    INFO("seed " << seed << ": mean error " << with << " m, without the limit " << without << " m");
+    const double as_shipped = GyroOnlyRun(seed, 0.5, defaults).mean_error_m;
+    const double with = GyroOnlyRun(seed, 0.5, limited).mean_error_m, without = GyroOnlyRun(seed, 0.5, unlimited).mean_error_m;
+    INFO("seed " << seed << ": mean error " << with << " m, without the limit " << without << " m, as shipped " << as_shipped << " m");
+    CHECK(as_shipped < 0.1);
     CHECK(with < 0.1);
     worst_with = std::max(worst_with, with);
     worst_without = std::max(worst_without, without);
@@ -52,13 +59,20 @@ TEST_CASE("A gyro-only robot with sparse scans does not take a correction for a 
 TEST_CASE("A gyro-only robot that lost track in a lane takes no far look-alike fix at once") {
   // Seed 4 loses track at 589 s (three second registrations rejected for their inlier ratio while
   // the estimate is 2 cm off) and is found again.
+  // As recorded, with the weak translation prior through turns; held firm there
+  // (FrontEndConfig::turn_holds_translation) seed 4 does not lose track (measured: 0.010 / 0.073 m
+  // with every fix at once too).
   const dpcr::MapperConfig defaults;
   REQUIRE(defaults.localisation.near_window_m > 0.0f);
-  dpcr::MapperConfig every_fix_at_once;  // near window 0: any verified fix is taken at once
+  dpcr::MapperConfig recorded;
+  recorded.front_end.turn_holds_translation = false;
+  dpcr::MapperConfig every_fix_at_once = recorded;  // near window 0: any verified fix is taken at once
   every_fix_at_once.localisation.near_window_m = 0.0f;
-  const dpcr::test::Xv11RunResult with = GyroOnlyRun(4, 10.0, defaults), without = GyroOnlyRun(4, 10.0, every_fix_at_once);
+  const dpcr::test::Xv11RunResult as_shipped = GyroOnlyRun(4, 10.0, defaults);
+  const dpcr::test::Xv11RunResult with = GyroOnlyRun(4, 10.0, recorded), without = GyroOnlyRun(4, 10.0, every_fix_at_once);
   INFO("mean / max error " << with.mean_error_m << " / " << with.max_error_m << " m; every fix at once " << without.mean_error_m << " / "
-                           << without.max_error_m << " m");
+                           << without.max_error_m << " m; as shipped " << as_shipped.mean_error_m << " / " << as_shipped.max_error_m << " m");
+  CHECK(as_shipped.max_error_m < 0.5);
   CHECK(with.max_error_m < 0.5);
   CHECK(with.mean_error_m < 0.05);
   // The scenario needs the change: taken at once, the look-alike fix put the robot metres off.

@@ -52,7 +52,7 @@ double MeanErrorFrom15s(const MapperType& mapper, const std::vector<Record>& rec
   return n > 0 ? sum / n : 0.0;
 }
 
-Located RunApartment(std::uint64_t seed, double valid, Odometry odometry, bool locate) {
+Located RunApartment(std::uint64_t seed, double valid, Odometry odometry, bool locate, bool firm_turns = true) {
   dpcr::sim::SimConfig sim_config;
   sim_config.seed = seed;
   sim_config.duration_min = 1.0;
@@ -62,6 +62,7 @@ Located RunApartment(std::uint64_t seed, double valid, Odometry odometry, bool l
   config.lidar = dpcr::test::SimulatedLidarConfig(sim_config, dpcr::LidarKind::kXv11);
   config.front_end.gyro_heading = true;  // as dpcr-sim's default for an XV-11
   config.front_end.start_scans.locate = locate;
+  config.front_end.turn_holds_translation = firm_turns;
   auto mapper = std::make_unique<MapperType>();
   REQUIRE(mapper->Init(config) == dpcr::Status::kOk);
   dpcr::sim::Simulation sim(dpcr::sim::LoadBuiltinWorld("apartment"), sim_config);
@@ -92,8 +93,14 @@ Located RunApartment(std::uint64_t seed, double valid, Odometry odometry, bool l
 }  // namespace
 
 TEST_CASE("A start that slid is found in the finished map and the trajectory follows the truth") {
-  const Located off = RunApartment(30, 0.4, Odometry::kHeadingTicks, false);
-  const Located on = RunApartment(30, 0.4, Odometry::kHeadingTicks, true);
+  // Seed 30 turns in place for 2 s at the start. The slid start was recorded with the weak
+  // translation prior through that turn; with the turn held (FrontEndConfig::turn_holds_translation)
+  // the start stays put and the drive-off after it slides instead, so the first map holds the true
+  // start and there is nothing to find (1.8 m off with and without the search; no seed of 1-120
+  // slides its start then: docs/back-end.md, "A robot that turns in place"). The search is tested
+  // on the start as it slid.
+  const Located off = RunApartment(30, 0.4, Odometry::kHeadingTicks, false, false);
+  const Located on = RunApartment(30, 0.4, Odometry::kHeadingTicks, true, false);
   INFO("seed 30: error from 15 s " << off.after_m << " m without the search; " << on.before_m << " -> " << on.after_m
                                    << " m with it, start moved by (" << on.refinement.shift.x << ", " << on.refinement.shift.y << ") m");
   // The scenario has the failure: without the search the run is mapped ~2 m from its start
