@@ -280,8 +280,8 @@ struct FrontEndConfig {
   // had, so the constant velocity's guess is as good a measure then. With the weak prior, scans
   // taken while the robot turned in place in a doorway (walls seen edge-on, nothing within reach
   // across the way) registered degenerate and walked the pose 0.3-0.5 m while it stood. XV-11,
-  // 15 min in the office, runs over 0.2 m: gyro alone seeds 1-40 14 -> 6, 41-100 26 -> 11;
-  // heading-only ticks seeds 1-40 15 -> 7 (docs/back-end.md, "A robot that turns in place").
+  // 15 min in the office, runs over 0.2 m: gyro alone seeds 1-200 82 -> 46; heading-only ticks
+  // seeds 1-40 15 -> 8 (docs/back-end.md, "A robot that turns in place").
   bool turn_holds_translation = true;
   // A first registration rejected from the wheels' prediction is tried again from the constant
   // velocity's when the two differ by more than these (0: never; wheels without a gyro heading).
