@@ -9,6 +9,9 @@
 // centimetres while it stood (FrontEndConfig::turn_holds_translation).
 #include <catch2/catch.hpp>
 
+#include <sstream>
+#include <string>
+
 #include "tests/apps/xv11_apartment_run.hpp"
 
 namespace {
@@ -23,6 +26,29 @@ dpcr::test::Xv11RunResult GyroOnlyOfficeRun(std::uint64_t seed, dpcr::MapperConf
   return run;
 }
 
+// Runs of seeds first..last: how many passed `bound_m` (the run's largest error if `by_max`, else
+// its mean error), the mean errors summed, and each run's mean / max error for the report.
+struct Tally {
+  int over = 0;
+  double sum_mean_m = 0.0;
+  std::string runs;
+};
+
+Tally TallyOfficeRuns(std::uint64_t first, std::uint64_t last, const dpcr::MapperConfig& config, const char* name, bool by_max,
+                      double bound_m) {
+  Tally t;
+  std::ostringstream runs;
+  runs << name << ", mean / max error (m) by seed:";
+  for (std::uint64_t seed = first; seed <= last; ++seed) {
+    const dpcr::test::Xv11RunResult run = GyroOnlyOfficeRun(seed, config);
+    runs << " " << seed << ": " << run.mean_error_m << " / " << run.max_error_m;
+    t.over += (by_max ? run.max_error_m : run.mean_error_m) > bound_m ? 1 : 0;
+    t.sum_mean_m += run.mean_error_m;
+  }
+  t.runs = runs.str();
+  return t;
+}
+
 }  // namespace
 
 TEST_CASE("A gyro-only robot does not slide away through the doorways of long rooms") {
@@ -35,23 +61,16 @@ TEST_CASE("A gyro-only robot does not slide away through the doorways of long ro
   // (FrontEndConfig::turn_holds_translation) 0 (0.34 m) against 4 (5.7 m). Degenerate stretches
   // are still guesses: a robot that stops or drives off in a doorway is not followed there
   // (docs/back-end.md).
-  int far_with = 0, far_without = 0;
-  double sum_with = 0.0, sum_without = 0.0;
-  for (std::uint64_t seed = 1; seed <= 16; ++seed) {
-    const dpcr::test::Xv11RunResult with = GyroOnlyOfficeRun(seed, defaults), without = GyroOnlyOfficeRun(seed, as_registered);
-    INFO("seed " << seed << ": mean / max error " << with.mean_error_m << " / " << with.max_error_m << " m, the steps as registered "
-                 << without.mean_error_m << " / " << without.max_error_m << " m");
-    far_with += with.max_error_m > 1.0 ? 1 : 0;
-    far_without += without.max_error_m > 1.0 ? 1 : 0;
-    sum_with += with.mean_error_m;
-    sum_without += without.mean_error_m;
-  }
-  INFO("runs ever over 1 m off: " << far_with << " of 16 (mean errors summed " << sum_with << " m), the steps as registered "
-                                  << far_without << " (" << sum_without << " m)");
-  CHECK(far_with <= 4);
-  CHECK(sum_with < 0.5 * sum_without);
+  const Tally with = TallyOfficeRuns(1, 16, defaults, "defaults", true, 1.0);
+  const Tally without = TallyOfficeRuns(1, 16, as_registered, "the steps as registered", true, 1.0);
+  INFO("runs ever over 1 m off: " << with.over << " of 16 (mean errors summed " << with.sum_mean_m << " m), the steps as registered "
+                                  << without.over << " (" << without.sum_mean_m << " m)");
+  INFO(with.runs);
+  INFO(without.runs);
+  CHECK(with.over <= 4);
+  CHECK(with.sum_mean_m < 0.5 * without.sum_mean_m);
   // The scenario needs the change: with the steps as registered more runs drove off.
-  CHECK(far_without >= 3);
+  CHECK(without.over >= 3);
 }
 
 TEST_CASE("A gyro-only robot that turns in place in a doorway stays where it turns") {
@@ -61,21 +80,14 @@ TEST_CASE("A gyro-only robot that turns in place in a doorway stays where it tur
   weak_prior.front_end.turn_holds_translation = false;
   // Measured when written, seeds 17-28: runs over 0.2 m mean error 1 (mean errors summed 0.87 m),
   // with the weak translation prior through the turns 5 (8.4 m). dpcr-sim, seeds 1-40: 14 -> 6.
-  int off_with = 0, off_without = 0;
-  double sum_with = 0.0, sum_without = 0.0;
-  for (std::uint64_t seed = 17; seed <= 28; ++seed) {
-    const dpcr::test::Xv11RunResult with = GyroOnlyOfficeRun(seed, defaults), without = GyroOnlyOfficeRun(seed, weak_prior);
-    INFO("seed " << seed << ": mean / max error " << with.mean_error_m << " / " << with.max_error_m << " m, the weak prior "
-                 << without.mean_error_m << " / " << without.max_error_m << " m");
-    off_with += with.mean_error_m > 0.2 ? 1 : 0;
-    off_without += without.mean_error_m > 0.2 ? 1 : 0;
-    sum_with += with.mean_error_m;
-    sum_without += without.mean_error_m;
-  }
-  INFO("runs over 0.2 m: " << off_with << " of 12 (mean errors summed " << sum_with << " m), the weak prior " << off_without
-                           << " (" << sum_without << " m)");
-  CHECK(off_with <= 3);
-  CHECK(sum_with < 0.5 * sum_without);
+  const Tally with = TallyOfficeRuns(17, 28, defaults, "defaults", false, 0.2);
+  const Tally without = TallyOfficeRuns(17, 28, weak_prior, "the weak prior", false, 0.2);
+  INFO("runs over 0.2 m: " << with.over << " of 12 (mean errors summed " << with.sum_mean_m << " m), the weak prior " << without.over
+                           << " (" << without.sum_mean_m << " m)");
+  INFO(with.runs);
+  INFO(without.runs);
+  CHECK(with.over <= 3);
+  CHECK(with.sum_mean_m < 0.5 * without.sum_mean_m);
   // The scenario needs the change: with the weak prior more runs walked off.
-  CHECK(off_without >= 4);
+  CHECK(without.over >= 4);
 }
