@@ -38,9 +38,11 @@ struct VacuumProfile {
   static constexpr int kSubmapSideCells = 256;
   // Line features per grid (submap or regional map).
   static constexpr int kMaxLines = 512;
-  // Obstacle cells a registration reference holds (a 12.8 m window of walls and furniture).
-  static constexpr int kReferenceCells = 4096;
-  // Edges of the back end's pose graph.
+  // Obstacle cells a registration reference holds (a 12.8 m window of walls and furniture). Four
+  // short of 4096: their 80 bytes (two references) hold the back end's closure waiting for
+  // confirmation (closure_confirmation.hpp) in a budget that was full to the byte.
+  static constexpr int kReferenceCells = 4092;
+  // Edges of the back end's pose graph (part of the map file's layout: a change makes saved maps unloadable).
   static constexpr int kMaxGraphEdges = 96;
   // Prediction 225 K measured (71 K before the run declared an LD06's range noise: smoothing a
   // 450-beam scan's returns along its walls, core/geometry/return_smoothing.hpp, ~150 K).

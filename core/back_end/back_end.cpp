@@ -31,6 +31,7 @@ void BackEnd::Init(const BackEndConfig& config, float region_width_m, const Refe
   s_.graph->Clear();
   job_head_ = job_count_ = 0;
   search_region_ = -1;
+  confirmation_.Clear();
 }
 
 void BackEnd::Push(std::int32_t job) {
@@ -246,6 +247,14 @@ LoopClosureResult BackEnd::FinishLoopClosure(Span<RegionalMap> regions, Span<con
     out.verdict = Status::kRejected;
     return out;
   }
+  const bool doubtful = found.verdict == Status::kOk && config_->confirm_second_ratio > 0.0f &&
+                        found.second_score >= config_->confirm_second_ratio * found.score;
+  if (!confirmation_.Take(region, doubtful, map.anchor * r.pose, submap_world, *config_)) {
+    ++counters_.loop_closures_rejected;
+    ++counters_.loop_closures_unconfirmed;
+    out.verdict = Status::kRejected;
+    return out;
+  }
   if (!AddClosure(regions, region, from, r, submap_world, found.verdict == Status::kOk ? found.score : 0.0f)) {
     out.verdict = Status::kRejected;
     return out;
@@ -300,6 +309,7 @@ bool BackEnd::AddClosure(Span<RegionalMap> regions, int region, int from, const 
     return false;
   }
   ++counters_.loop_closures_accepted;
+  confirmation_.Clear();
   WriteAnchors(regions);
   return true;
 }

@@ -17,6 +17,7 @@
 #include <cstdint>
 
 #include "core/back_end/back_end_config.hpp"
+#include "core/back_end/closure_confirmation.hpp"
 #include "core/back_end/correlative_search.hpp"
 #include "core/back_end/pose_graph.hpp"
 #include "core/base/span.hpp"
@@ -37,6 +38,7 @@ struct BackEndCounters {
   std::uint32_t loop_closures_accepted = 0;
   std::uint32_t loop_closures_rejected = 0;  // search weak or ambiguous, PLICP refused, or the graph disagreed
   std::uint32_t loop_closures_inconsistent = 0;  // of those: refused by the graph
+  std::uint32_t loop_closures_unconfirmed = 0;   // of those: waiting for a search to agree (closure_confirmation.hpp)
   std::uint32_t edges_dropped_full = 0;
   std::uint32_t jobs_dropped_full = 0;
   std::uint32_t downweighted_edges = 0;  // after the last optimisation
@@ -156,6 +158,7 @@ class BackEnd {
   int search_from_ = -1;
   bool search_begun_this_scan_ = false;
   Pose2 search_submap_world_;
+  ClosureConfirmation confirmation_;  // a doubtful closure waiting for a second search
   std::size_t search_points_ = 0;
   int job_head_ = 0;
   int job_count_ = 0;
