@@ -57,21 +57,23 @@ if [ "$MODE" = default ]; then
   echo "intel.clf all pairs $E m (bound 0.025 m): ok"
   exit 0
 fi
-if [ "$MODE" = closures ]; then
-  for DRAW in "23 4" "17.5 3.6" "23 3.8"; do
-    set -- $DRAW
-    replay "range$1-width$2" --max-range "$1" --region-width "$2"
-    grep -q '"loop_closures_unconfirmed": [1-9]' "$T/range$1-width$2/metrics.json" || fail "range $1 m, regions $2 m: no closure waited"
-    awk -v e="$E" 'BEGIN { exit !(e <= 0.03) }' || fail "range $1 m, regions $2 m: all pairs $E m, bound 0.03 m"
-    echo "range $1 m, regions $2 m: all pairs $E m (bound 0.03 m), a doubtful closure waited: ok"
+# check_draws BOUND PATTERN FAILURE "RANGE WIDTH"...: replays each draw (range limit and region
+# width, m); each must have PATTERN in its metrics.json (else it fails with FAILURE) and all pairs
+# within BOUND m.
+check_draws() {
+  BOUND=$1 PATTERN=$2 FAILURE=$3
+  shift 3
+  for DRAW in "$@"; do
+    RANGE=${DRAW% *} WIDTH=${DRAW#* }
+    replay "range$RANGE-width$WIDTH" --max-range "$RANGE" --region-width "$WIDTH"
+    grep -q "$PATTERN" "$T/range$RANGE-width$WIDTH/metrics.json" || fail "range $RANGE m, regions $WIDTH m: $FAILURE"
+    awk -v e="$E" -v b="$BOUND" 'BEGIN { exit !(e <= b) }' || fail "range $RANGE m, regions $WIDTH m: all pairs $E m, bound $BOUND m"
+    echo "range $RANGE m, regions $WIDTH m: all pairs $E m (bound $BOUND m): ok"
   done
-  exit 0
-fi
-[ "$MODE" = draws ] || fail "unknown mode $MODE (default, draws or closures)"
-for DRAW in "21 3.8" "20 4.2"; do
-  set -- $DRAW
-  replay "range$1-width$2" --max-range "$1" --region-width "$2"
-  grep -q '"translation_switched_off": 0' "$T/range$1-width$2/metrics.json" || fail "range $1 m, regions $2 m: the wheels were set aside"
-  awk -v e="$E" 'BEGIN { exit !(e <= 0.05) }' || fail "range $1 m, regions $2 m: all pairs $E m, bound 0.05 m"
-  echo "range $1 m, regions $2 m: all pairs $E m (bound 0.05 m), wheels kept: ok"
-done
+}
+
+case "$MODE" in
+  draws) check_draws 0.05 '"translation_switched_off": 0' "the wheels were set aside" "21 3.8" "20 4.2" ;;
+  closures) check_draws 0.03 '"loop_closures_unconfirmed": [1-9]' "no closure waited" "23 4" "17.5 3.6" "23 3.8" ;;
+  *) fail "unknown mode $MODE (default, draws or closures)" ;;
+esac
