@@ -95,8 +95,8 @@ struct BackEndConfig {
   // it (below search.max_second_ratio, which refuses outright) is not taken at once: the closure
   // waits for the next search of that map to agree with it (closure_confirmation.hpp), as does a
   // search of that map that contradicts the one waiting. On intel.clf the closure that decides a
-  // replay, the first lap back into the start corridor, scores 0.94-0.95 of its best against a
-  // second peak 0.9-2.5 m along the corridor; the draws that took the wrong peak ended 4-11 cm off
+  // replay, the first lap back into the start corridor, has a second peak 0.9-2.5 m along the
+  // corridor scoring 0.94-0.95 of the best; the draws that took the wrong peak ended 4-11 cm off
   // over all pairs. 0: off.
   float confirm_second_ratio = 0.85f;
   // A closure is kept only if, optimised with it, no edge's chi2 exceeds this (pose_graph.hpp).

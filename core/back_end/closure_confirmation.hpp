@@ -4,9 +4,9 @@
 // The correlative search refuses a closure outright when a separate peak scores within
 // CorrelativeSearchConfig::max_second_ratio (95 %) of the best. Below that a look-alike still
 // wins now and then: on intel.clf the closure that decides a replay, the robot's first lap back
-// into the start corridor, has its best pose 0.94-0.95 of the way to a second peak 0.9-2.5 m along
-// the corridor, and which of the two wins depends on a range limit or a region width. Taken, the
-// wrong one held the rest of the log 4-11 cm off over all pairs. A doubtful closure
+// into the start corridor, has a second peak 0.9-2.5 m along the corridor scoring 0.94-0.95 of the
+// best, and which of the two wins depends on a range limit or a region width. Taken, the wrong one
+// held the rest of the log 4-11 cm off over all pairs. A doubtful closure
 // (BackEndConfig::confirm_second_ratio) therefore waits; the next search of that map (the front
 // end retries after 10 scans and 1 m) takes it if it lands on the same correction. A search that
 // contradicts the one waiting, doubtful or not, waits in its place: two searches of one map that
@@ -28,9 +28,9 @@ class ClosureConfirmation {
   bool Take(int region, bool doubtful, const Pose2& found_world, const Pose2& submap_world, const BackEndConfig& config) {
     const bool same_map = waiting_ && region == region_;
     if (!doubtful && !same_map) return true;
-    // The correction a closure implies (found x tracked^-1) is compared where the robot is now,
-    // in its frame: a drift's correction turned by a hundredth of a radian moves the world's far
-    // corners by decimetres but the robot by millimetres.
+    // The correction a closure implies (found x tracked^-1) is compared where the robot is now, in
+    // its frame, not in the world's: there a hundredth of a radian between two corrections is 20 cm
+    // for a robot 20 m from the origin, here a centimetre per metre driven between the searches.
     const bool agrees = same_map && WithinSearchBaseWindow(config, Between(correction_ * submap_world, found_world));
     waiting_ = !agrees;
     if (agrees) return true;
