@@ -4,22 +4,20 @@
 
 namespace dpcr {
 
-TilePool::TilePool(Span<Tile> tiles) : tiles_(tiles) {
-  DPCR_ASSERT(tiles.size() < kTileInUse);
-  for (std::size_t i = tiles.size(); i-- > 0;) {
-    tiles_[i].next_free = free_head_;
-    free_head_ = static_cast<TileId>(i);
-  }
-}
+TilePool::TilePool(Span<Tile> tiles) : tiles_(tiles) { DPCR_ASSERT(tiles.size() < kTileInUse); }
 
 TileId TilePool::Allocate() {
-  if (free_head_ == kNoTile) {
+  TileId id;
+  if (free_head_ != kNoTile) {
+    id = free_head_;
+    free_head_ = tiles_[id].next_free;
+  } else if (never_used_from_ < tiles_.size()) {
+    id = never_used_from_++;
+  } else {
     ++failed_allocations_;
     return kNoTile;
   }
-  const TileId id = free_head_;
   Tile& tile = tiles_[id];
-  free_head_ = tile.next_free;
   tile.next_free = kTileInUse;
   for (std::int16_t& cell : tile.cells) cell = kUnknownCell;
   tile.stamp = 0;

@@ -25,7 +25,10 @@ struct Tile {
   TileId next_free;
 };
 
-// Size-erased pool over caller-owned tiles (TilePoolStorage<N> owns them).
+// Size-erased pool over caller-owned tiles (TilePoolStorage<N> owns them). Freed tiles are
+// reused first (last freed, first reused); then the never-used ones in index order. Those are
+// not touched before their first allocation: a mapper in static storage does not fault in the
+// pages of tiles it never uses.
 class TilePool {
  public:
   explicit TilePool(Span<Tile> tiles);
@@ -45,7 +48,8 @@ class TilePool {
 
  private:
   Span<Tile> tiles_;
-  TileId free_head_ = kNoTile;
+  TileId free_head_ = kNoTile;  // the freed tiles, a list through next_free
+  TileId never_used_from_ = 0;  // tiles from here on have never been allocated (in free_head_'s padding)
   std::size_t used_ = 0;
   std::size_t failed_allocations_ = 0;
 };
