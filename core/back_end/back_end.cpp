@@ -247,8 +247,11 @@ LoopClosureResult BackEnd::FinishLoopClosure(Span<RegionalMap> regions, Span<con
     out.verdict = Status::kRejected;
     return out;
   }
-  const bool doubtful = found.verdict == Status::kOk && config_->confirm_second_ratio > 0.0f &&
-                        found.second_score >= config_->confirm_second_ratio * found.score;
+  const bool near_peak = found.verdict == Status::kOk && config_->confirm_second_ratio > 0.0f &&
+                         found.second_score >= config_->confirm_second_ratio * found.score;
+  const bool from_far_guess = found.verdict != Status::kOk && config_->confirm_guess_window_m > 0.0f &&
+                              trace_.window_m > config_->confirm_guess_window_m;
+  const bool doubtful = near_peak || from_far_guess;
   if (!confirmation_.Take(region, doubtful, map.anchor * r.pose, submap_world, *config_)) {
     ++counters_.loop_closures_rejected;
     ++counters_.loop_closures_unconfirmed;

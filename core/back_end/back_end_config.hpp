@@ -99,6 +99,14 @@ struct BackEndConfig {
   // corridor scoring 0.94-0.95 of the best; the draws that took the wrong peak ended 4-11 cm off
   // over all pairs. 0: off.
   float confirm_second_ratio = 0.85f;
+  // A closure refined by PLICP from the front end's guess (the search found no clear peak) waits
+  // alike when that search's window was wider than this: the guess may then be metres off, and
+  // PLICP from it settles on whatever wall is near. (Intel with its odometry calibrated, range
+  // 17.5-23 m: such a closure of the start corridor 1.2-1.5 m off held the graph, and the clear
+  // closures of the next maps were refused; 7 of 64 draws over 5 cm, 2 with this.) The window grows
+  // with the path since the map was last seen (search_base_m + search_per_metre_m x path): 2 m is
+  // 42 m of path. 0: never.
+  float confirm_guess_window_m = 2.0f;
   // A closure is kept only if, optimised with it, no edge's chi2 exceeds this (pose_graph.hpp).
   float max_edge_chi2 = 100.0f;
   PoseGraphConfig optimizer;

@@ -13,6 +13,9 @@
 // disagree cannot both be right. Searches of other maps are judged alone: until the graph has
 // closed the loop between two maps, their anchors disagree by that loop's drift, and closures into
 // both may be right.
+// A closure refined from the front end's guess after a search without a clear peak is doubtful
+// too when that search's window was wide (BackEndConfig::confirm_guess_window_m): PLICP from a
+// guess metres off finds the nearest look-alike as readily as the map.
 #pragma once
 
 #include "core/back_end/back_end_config.hpp"

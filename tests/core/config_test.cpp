@@ -228,6 +228,7 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(back_end.closure_prior_info, kNonNegative),
       FLOAT_FIELD(back_end.unfollowed_closure_min_score, kRatio),
       FLOAT_FIELD(back_end.confirm_second_ratio, kRatio),
+      FLOAT_FIELD(back_end.confirm_guess_window_m, kNonNegative),
       FLOAT_FIELD(back_end.search.min_angle_step_rad, kPositive),
       FLOAT_FIELD(back_end.search.max_angle_step_rad, kPositive),
       FLOAT_FIELD(back_end.search.min_score, kPositiveRatio),
