@@ -102,7 +102,7 @@ struct BackEndConfig {
   // A closure refined by PLICP from the front end's guess (the search found no clear peak) waits
   // alike when that search's window was wider than this: the guess may then be metres off, and
   // PLICP from it settles on whatever wall is near. (Intel with its odometry calibrated, range
-  // 17.5-23 m: such a closure of the start corridor 1.2-1.5 m off held the graph, and the clear
+  // 18.5-23 m: such a closure of the start corridor 1.2-1.5 m off held the graph, and the clear
   // closures of the next maps were refused; 7 of 64 draws over 5 cm, 2 with this.) The window grows
   // with the path since the map was last seen (search_base_m + search_per_metre_m x path): 2 m is
   // 42 m of path. 0: never.

@@ -27,7 +27,8 @@ class ClosureConfirmation {
  public:
   // Whether a closure into map `region` is taken now: its submap was found at `found_world` and
   // tracked at `submap_world` (both world poses), `doubtful` when its search's second peak came
-  // near the best. When not, it is the closure waiting from now on.
+  // near the best or it was refined from a far guess. When not taken, it is the closure waiting
+  // from now on.
   bool Take(int region, bool doubtful, const Pose2& found_world, const Pose2& submap_world, const BackEndConfig& config) {
     const bool same_map = waiting_ && region == region_;
     if (!doubtful && !same_map) return true;
