@@ -82,6 +82,7 @@ class Mapper {
   const FrontEndCounters& front_end_counters() const { return front_end_.front_end_counters(); }
   // Whether the wheels measure the motion the lidar sees (core/front_end/wheel_check.hpp).
   const WheelCheck& wheel_check() const { return front_end_.wheel_check(); }
+  const OdometryCalibration& odometry_calibration() const { return front_end_.odometry_calibration(); }
   const MapperConfig& config() const { return front_end_.config(); }
   const char* pipeline() const {
     if (!front_end_.registration_enabled()) return "odometry";

@@ -51,7 +51,7 @@ void Reference(M& m, dpcr::ReferenceConfig& c) {
 
 template <class M>
 void Plicp(M& m, dpcr::PlicpConfig& c) {
-  m(c.max_iterations), m(c.gate_m), m(c.trim), m(c.trim_floor_m), m(c.fine_phase_step_m), m(c.fine_phase_step_rad),
+  m(c.max_iterations), m(c.gate_m), m(c.trim), m(c.accept_partial_overlap), m(c.trim_floor_m), m(c.fine_phase_step_m), m(c.fine_phase_step_rad),
       m(c.huber_m), m(c.near_weight_range_m), m(c.local_line_weight), m(c.point_weight), m(c.min_step_m), m(c.min_step_rad),
       m(c.min_correspondences), m(c.min_inlier_ratio), m(c.max_mean_residual_m), m(c.min_translation_information),
       m(c.max_correction_m), m(c.max_correction_rad);
@@ -73,7 +73,8 @@ void ForEachField(M& m, dpcr::MapperConfig& c) {
       m(f.enable_registration), m(f.lost_after_rejections), m(f.lidar_only_lost_after_second_rejections), m(f.prior_info_xy), m(f.prior_info_theta), m(f.max_acceleration_mps2), m(f.odometry_doubt_m), m(f.odometry_doubt_rad),
       m(f.second_registration_max_points), m(f.min_start_hits), m(f.sparse_scan_share), m(f.sparse_residual_noise_factor), m(f.redeskew_min_m), m(f.redeskew_min_rad), m(f.lidar_only_fixed_lag);
   Plicp(m, f.first_registration);
-  m(f.search_on_rejection), m(f.search_turn_rad), m(f.degenerate_guess_forward), m(f.turn_holds_translation);
+  m(f.search_on_rejection), m(f.search_turn_rad), m(f.degenerate_guess_forward), m(f.turn_holds_translation),
+      m(f.calibrate_odometry), m(f.accept_partial_overlap);
   m(f.search.resolution_m), m(f.search.sigma_m), m(f.search.kernel_radius_cells), m(f.search.angle_window_rad),
       m(f.search.angle_step_rad), m(f.search.xy_window_m), m(f.search.max_points), m(f.search.step_penalty),
       m(f.search.min_gain);

@@ -12,6 +12,7 @@ bool SparseScan(const FrontEndConfig& config, std::size_t hits, std::size_t beam
 PlicpConfig FirstRegistrationBase(const MapperConfig& config, bool sparse) {
   PlicpConfig c = config.front_end.first_registration;
   c.near_weight_range_m = config.lidar.near_weight_range_m;
+  c.accept_partial_overlap = config.front_end.accept_partial_overlap;
   if (sparse) {
     c.max_mean_residual_m =
         std::max(c.max_mean_residual_m, config.front_end.sparse_residual_noise_factor * config.lidar.range_noise_m);

@@ -54,6 +54,10 @@ Status FrontEnd::Init(const MapperConfig& config) {
   fe_counters_ = FrontEndCounters{};
   odometry_.Clear();
   wheel_check_ = WheelCheck{};
+  calibration_.Reset();
+  stall_.Reset();
+  wheel_step_ = Pose2::Identity();
+  wheel_step_valid_ = false;
   pose_ = submap_pose_ = last_odom_ = last_motion_ = Pose2::Identity();
   last_motion_us_ = 0;
   have_odom_ = have_scan_ = weak_match_ = have_gyro_yaw_ = last_degenerate_ = false;
@@ -148,12 +152,12 @@ Pose2 FrontEnd::Predict(std::int64_t stamp_us, std::int64_t dt_us) {
     return pose_ * constant_velocity;
   }
   const Pose2 odom = odometry_.PoseAt(stamp_us);
-  Pose2 step = Between(last_odom_, odom);
   // With a gyro (FrontEndConfig::gyro_heading): the wheels give the translation, the gyro the turn.
   float yaw = 0.0f;
   const bool wheels = odometry_.newest().has_wheels;
   const bool use_gyro = config_.front_end.gyro_heading || !wheels;
   const bool gyro = use_gyro && odometry_.GyroYawAt(stamp_us, &yaw);
+  Pose2 step = WheelStep(odom, wheels, constant_velocity);
   if (gyro && have_gyro_yaw_) {
     step.theta = NormalizeAngle(yaw - last_gyro_yaw_);
   } else if (!wheels) {
@@ -173,6 +177,41 @@ Pose2 FrontEnd::Predict(std::int64_t stamp_us, std::int64_t dt_us) {
   last_odom_ = odom;
   have_odom_ = true;
   return predicted;
+}
+
+Pose2 FrontEnd::WheelStep(const Pose2& odom, bool wheels, const Pose2& constant_velocity) {
+  const Pose2 measured = Between(last_odom_, odom);
+  wheel_step_ = measured;
+  wheel_step_valid_ = have_odom_ && wheels;
+  if (!wheel_step_valid_) return measured;
+  const Pose2 calibrated = config_.front_end.calibrate_odometry ? calibration_.Apply(measured) : measured;
+  const bool still = odom.x == last_odom_.x && odom.y == last_odom_.y && odom.theta == last_odom_.theta;
+  bool caught_up = false;
+  const Pose2 step = stall_.Step(calibrated, still, constant_velocity, &caught_up);
+  if (caught_up) {
+    ++fe_counters_.odometry_stalls;
+    wheel_step_valid_ = false;  // no measure of the wheels over one scan
+  }
+  return step;
+}
+
+void FrontEnd::AfterWheelStep(const Pose2& registered_step, std::int64_t stamp_us, bool registered, bool keep_out) {
+  wheel_check_.AddScan(registered_step, last_odom_, stamp_us, registered && consecutive_rejections_ == 0);
+  stall_.AddRegistered(registered_step);
+  // The calibration takes only a clean measure of the wheels: accepted, not degenerate (along a
+  // corridor the registration returns the prediction), the wheels trusted.
+  if (!registered || keep_out || consecutive_rejections_ != 0 || last_degenerate_ || !wheel_step_valid_ ||
+      wheel_check_.translation_doubted()) {
+    return;
+  }
+  calibration_.Add(registered_step, wheel_step_);
+}
+
+void FrontEnd::WheelsUnmeasured(std::int64_t stamp_us) {
+  // A lost robot's scan says nothing of where it went: the wheel check's windows close, and what
+  // was registered while the wheels stalled is forgotten.
+  wheel_check_.AddScan(Pose2::Identity(), Pose2::Identity(), stamp_us, false);
+  stall_.Reset();
 }
 
 Pose2 FrontEnd::GuessedVelocityStep(const Pose2& step, std::int64_t dt_us) const {
@@ -225,7 +264,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
     StopStartFits();
     pending_.active = false;  // a lost robot maps nothing: the waiting scan is dropped
     RelocaliseScan(beams, motion, since_last_us, &projected, predicted);
-    wheel_check_.AddScan(Pose2::Identity(), Pose2::Identity(), stamp_us, false);
+    WheelsUnmeasured(stamp_us);
     last_motion_ = GuessedVelocityStep(Between(previous, pose_), since_last_us);
     last_motion_us_ = static_cast<std::int32_t>(since_last_us);
     FinishScan(since_last_us);
@@ -247,7 +286,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   } else {
     pose_ = predicted;
   }
-  wheel_check_.AddScan(Between(previous, pose_), last_odom_, stamp_us, registered && consecutive_rejections_ == 0);
+  AfterWheelStep(Between(previous, pose_), stamp_us, registered, keep_out);
   last_motion_ = GuessedVelocityStep(Between(previous, pose_), since_last_us);
   if (consecutive_rejections_ > 0) FadeConstantVelocity();
   last_motion_us_ = static_cast<std::int32_t>(since_last_us);

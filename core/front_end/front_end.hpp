@@ -26,6 +26,8 @@
 #include "core/front_end/start_heading.hpp"
 #include "core/front_end/start_scans.hpp"
 #include "core/front_end/submap.hpp"
+#include "core/front_end/odometry_calibration.hpp"
+#include "core/front_end/odometry_stall.hpp"
 #include "core/front_end/wheel_check.hpp"
 #include "core/geometry/scan.hpp"
 #include "core/geometry/scan_projection.hpp"
@@ -52,6 +54,7 @@ struct FrontEndCounters {
   // constant velocity's (FrontEndConfig::odometry_doubt_*), and how many of those were accepted.
   std::uint32_t odometry_doubted = 0;
   std::uint32_t odometry_overruled = 0;
+  std::uint32_t odometry_stalls = 0;  // catch-ups taken from where the wheels stalled (OdometryStall)
   // Fixed-lag de-skew (FrontEndConfig::lidar_only_fixed_lag): scans registered again once projected
   // with the motion over their own revolution (accepted), and scans kept out as bent
   // (scans_kept_out_bent) that went into the maps after all.
@@ -97,6 +100,7 @@ class FrontEnd {
   const MapperCounters& counters() const { return counters_; }
   const FrontEndCounters& front_end_counters() const { return fe_counters_; }
   const WheelCheck& wheel_check() const { return wheel_check_; }
+  const OdometryCalibration& odometry_calibration() const { return calibration_; }
   const MapperConfig& config() const { return config_; }
   int region_count() const { return regions_.size(); }
   const RegionalMap& region(int i) const { return regions_[i]; }
@@ -146,6 +150,13 @@ class FrontEnd {
   Pose2 ConstantVelocity(std::int64_t dt_us) const;
   Pose2 VelocityPerSecond() const;
   // The scan's registered step as the next constant-velocity guess (acceleration_limit.hpp).
+  // The wheels' step since the last scan (their pose now: `odom`), calibrated, a stall's catch-up
+  // taken from where it stalled (OdometryCalibration, OdometryStall; the constant velocity's step
+  // tells a catch-up from wheels that resume where they stopped); and, after the scan's
+  // registration, what those learn from it.
+  Pose2 WheelStep(const Pose2& odom, bool wheels, const Pose2& constant_velocity);
+  void AfterWheelStep(const Pose2& registered_step, std::int64_t stamp_us, bool registered, bool keep_out);
+  void WheelsUnmeasured(std::int64_t stamp_us);
   Pose2 GuessedVelocityStep(const Pose2& step, std::int64_t dt_us) const;
   // After a rejected scan: the last motion fades (see the definition for what is held).
   void FadeConstantVelocity();
@@ -371,6 +382,9 @@ class FrontEnd {
   FrontEndCounters fe_counters_;
   OdometryBuffer odometry_;
   WheelCheck wheel_check_;  // wheels that miss the motion the lidar sees become a heading source at most
+  OdometryCalibration calibration_;  // the wheels' step and turn scales, from the registrations
+  Pose2 wheel_step_;  // the wheels' step into the current scan, as measured (WheelStep)
+  OdometryStall stall_;  // wheels whose pose repeats while the robot moves, then catches up
   RegionTracker tracker_;
   RegionSet regions_;
   Pose2 pose_;         // robot in the submap frame
@@ -402,6 +416,7 @@ class FrontEnd {
   bool start_pending_ = false;
   bool step_turn_measured_ = false;
   bool step_turn_from_wheels_ = false;
+  bool wheel_step_valid_ = false;  // wheel_step_ holds a step of trusted wheels
   bool start_wheel_turns_ = false;
   bool bent_ = false;             // the last scan's de-skew was doubtful (RegisterRedeskewed)
   std::uint8_t bent_kept_out_ = 0;  // bent scans kept out in a row

@@ -20,6 +20,9 @@ struct PlicpConfig {
   int max_iterations = 30;
   float gate_m = 0.5f;    // no correspondence beyond this residual (and the reference's table bound)
   bool trim = true;       // Censi's adaptive trimming: keep residuals below min(p95, 2 p70)
+  // Accept a clean fit of part of the points (PartialOverlapFits in plicp.cpp) below
+  // min_inlier_ratio (FrontEndConfig::accept_partial_overlap sets it for the first registration).
+  bool accept_partial_overlap = false;
   float trim_floor_m = 0.03f;  // never trim below this: sensor noise is not an outlier
   // Trimming starts once a step is below these (before, gate and kernel only).
   float fine_phase_step_m = 0.01f;

@@ -47,6 +47,7 @@ struct Options {
   bool localise_only = false;
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
   float max_accel_mps2 = -1.0f;  // < 0: the configuration's (FrontEndConfig::max_acceleration_mps2)
+  bool calibrate_odometry = true;  // FrontEndConfig::calibrate_odometry
   std::string scan_times;
   bool write_regions = false;
   std::string heading = "model";  // FrontEndConfig::gyro_heading (model: ModelGyroHeading)
@@ -137,6 +138,7 @@ dpcr::MapperConfig CarmenMapperConfig(const Options& opt, float log_laser_offset
   config.lidar.mount = dpcr::Pose2{offset, 0.0f, 0.0f};
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
   if (opt.max_accel_mps2 >= 0.0f) config.front_end.max_acceleration_mps2 = opt.max_accel_mps2;
+  config.front_end.calibrate_odometry = opt.calibrate_odometry;
   ApplyLocalisationOptions(opt, &config);
   return config;
 }
@@ -278,6 +280,7 @@ int ReplayDevice(const Options& opt) {
   config.front_end.gyro_heading = dpcr::GyroHeadingFor(opt.heading, lidar.kind);
   if (opt.region_width_m > 0.0f) config.front_end.region_width_m = opt.region_width_m;
   if (opt.max_accel_mps2 >= 0.0f) config.front_end.max_acceleration_mps2 = opt.max_accel_mps2;
+  config.front_end.calibrate_odometry = opt.calibrate_odometry;
   ApplyLocalisationOptions(opt, &config);
   if (mapper.Init(config) != dpcr::Status::kOk) throw std::runtime_error(dpcr::apps::InitError<MapperType>(config));
   LoadMapIfAsked(opt, &mapper);
@@ -298,7 +301,8 @@ int ReplayDevice(const Options& opt) {
                        {"lidar_near_weight_range_m", config.lidar.near_weight_range_m},
                        {"lidar_map_max_turn_rate_dps", config.lidar.map_max_turn_rate_rad_s * 180.0 / M_PI},
                        {"heading", config.front_end.gyro_heading ? "gyro" : "wheels"},
-                       {"max_acceleration_mps2", config.front_end.max_acceleration_mps2}};
+                       {"max_acceleration_mps2", config.front_end.max_acceleration_mps2},
+                       {"calibrate_odometry", config.front_end.calibrate_odometry}};
   metrics["input"] = {{"uart", opt.uart}, {"candump", opt.candump}, {"lidar", lidar_name},
                       {"packets", c.lidar.packets}, {"bad_packets", c.lidar.bad_packets}, {"resyncs", c.lidar.resyncs},
                       {"discarded_bytes", c.lidar.discarded_bytes}, {"revolutions", c.lidar.revolutions},
@@ -359,6 +363,9 @@ int main(int argc, char** argv) {
                  "constant-velocity guess changes by no more (default: the configuration's, 0.5; 0: no limit)");
   app.add_option("--region-width", opt.region_width_m, "region width S in metres (default: the configuration's, 4 m)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--calibrate-odometry", opt.calibrate_odometry, "calibrate the wheels' step and turn scales online from the "
+                 "registrations and predict with them (FrontEndConfig::calibrate_odometry; core/front_end/odometry_calibration.hpp)")
+      ->capture_default_str();
   app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");
   app.add_flag("--write-regions", opt.write_regions,
                "also write regions.tsv (each scan's map and pose in it) and graph.tsv (final anchors and edges)");

@@ -70,6 +70,7 @@ struct Options {
   int drop_behind_cells = -1;       // GridConfig::drop_hits_behind_settled_cells (< 0: the default)
   bool hit_means = true;            // GridConfig::hit_means
   bool start_scans = true;          // StartScansConfig::enabled
+  bool calibrate_odometry = true;   // FrontEndConfig::calibrate_odometry
   bool start_locate = true;         // StartScansConfig::locate
   std::vector<double> lidar_noise;  // range sigma base (m), fraction of the range (empty: the lidar model's)
   bool ideal_wheels = false;        // no calibration error, no slips (the wheels' ticks still quantise)
@@ -162,6 +163,7 @@ void AddMapperInputs(const dpcr::MapperConfig& config, nlohmann::json* input) {
   (*input)["unsettle_after"] = {config.grid.unsettle_occupied_after, config.grid.unsettle_free_after};
   (*input)["hit_means"] = config.grid.hit_means;
   (*input)["start_scans"] = config.front_end.start_scans.enabled;
+  (*input)["calibrate_odometry"] = config.front_end.calibrate_odometry;
   (*input)["start_locate"] = config.front_end.start_scans.locate;
   (*input)["near_weight_range_m"] = config.lidar.near_weight_range_m;
   (*input)["map_max_turn_rate_dps"] = config.lidar.map_max_turn_rate_rad_s * 180.0 / M_PI;
@@ -227,6 +229,7 @@ dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfi
   if (opt.drop_behind_cells >= 0) config.grid.drop_hits_behind_settled_cells = static_cast<std::uint8_t>(opt.drop_behind_cells);
   config.grid.hit_means = opt.hit_means;
   config.front_end.start_scans.enabled = opt.start_scans;
+  config.front_end.calibrate_odometry = opt.calibrate_odometry;
   config.front_end.start_scans.locate = opt.start_locate;
   return config;
 }
@@ -410,6 +413,9 @@ void AddSensorOptions(CLI::App& app, Options& opt) {
   app.add_option("--unsettle-after", opt.unsettle_after, "settled regional cells learn again after this many scans in a row "
                  "contradict them: occupied,free (0: never; GridConfig::unsettle_occupied_after, unsettle_free_after)")
       ->expected(2)->delimiter(',')->check(CLI::Range(0, 255));
+  app.add_option("--calibrate-odometry", opt.calibrate_odometry, "calibrate the wheels' step and turn scales online from the "
+                 "registrations and predict with them (FrontEndConfig::calibrate_odometry; core/front_end/odometry_calibration.hpp)")
+      ->capture_default_str();
   app.add_option("--start-scans", opt.start_scans, "keep scans of the first seconds with the gyro's turn and, at the end, place "
                  "the start in the finished first map with them (StartScansConfig::enabled; core/front_end/start_scans.hpp)")
       ->default_str("true");

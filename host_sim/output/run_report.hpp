@@ -188,7 +188,12 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                  {"heading_agrees", w.heading_used()},
                  {"translation_windows_missed", w.translation_misses()},
                  {"translation_switched_off", w.translation_switched_off()},
-                 {"heading_scale", w.heading_scale()}};
+                 {"heading_scale", w.heading_scale()},
+                 // OdometryCalibration: the factors fitted by the end (1 until enough was seen); the
+                 // prediction applies them when `calibrated`.
+                 {"calibrated", mapper.config().front_end.calibrate_odometry},
+                 {"translation_scale", mapper.odometry_calibration().translation_scale()},
+                 {"turn_scale", mapper.odometry_calibration().turn_scale()}};
   j["tracking"] = TrackingMetrics(c, mapper.front_end_counters().first_registrations);
   j["tracking_fraction"] = j["tracking"]["tracking_fraction"];
   const auto& f = mapper.front_end_counters();
@@ -196,7 +201,7 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                     {"second_registrations", f.second_registrations}, {"second_rejected", f.second_rejected},
                     {"submap_line_builds", f.submap_line_builds}, {"region_line_builds", f.region_line_builds},
                     {"reference_cells_dropped", f.reference_cells_dropped}, {"submap_early_builds", f.submap_early_builds},
-                    {"redeskews", f.redeskews}, {"odometry_doubted", f.odometry_doubted}, {"odometry_overruled", f.odometry_overruled}, {"bent_tracked", f.bent_tracked}, {"lag_reregistered", f.lag_reregistered}, {"lag_bent_taken", f.lag_bent_taken}, {"searches", f.search.searches},
+                    {"redeskews", f.redeskews}, {"odometry_doubted", f.odometry_doubted}, {"odometry_overruled", f.odometry_overruled}, {"odometry_stalls", f.odometry_stalls}, {"bent_tracked", f.bent_tracked}, {"lag_reregistered", f.lag_reregistered}, {"lag_bent_taken", f.lag_bent_taken}, {"searches", f.search.searches},
                     {"first_wall_direction_deg", std::isfinite(f.first_wall_direction_rad) ? nlohmann::json(f.first_wall_direction_rad * 180.0 / M_PI) : nlohmann::json()},
                     {"grid_turn_deg", f.grid_turn_rad * 180.0 / M_PI},
                     {"search_recoveries", f.search.search_recoveries}, {"search_grid_builds", f.search.search_grid_builds}};

@@ -24,7 +24,9 @@
 # look-alike's); the look-alike was taken and held the log off (all pairs 0.041 m at range 23 m,
 # 0.089 m at 17.5 m with regions 3.6 m, 0.109 m at 23 m with regions 3.8 m). A doubtful closure now
 # waits for a second search of that map to agree (core/back_end/closure_confirmation.hpp): each draw
-# must stay under 0.03 m (0.020-0.023 m) and have made at least one closure wait.
+# must stay under 0.03 m (0.020-0.023 m) and have made at least one closure wait. These draws are
+# replayed with the odometry as logged (--calibrate-odometry false): calibrated online, the front
+# end no longer meets the look-alike in them.
 #
 # With "guess": intel.clf with its odometry calibrated (steps x 0.962, turns x 0.956: what the
 # registrations measure of it; tools/bench/corrupt_carmen.py), at range 18.5 m with regions 3.6 m
@@ -52,7 +54,8 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 replay() {
   NAME=$1
   shift
-  "$REPLAY" --carmen "$LOG" --relations "$RELATIONS" "$@" --out "$T/$NAME" > "$T/$NAME.txt" 2>&1 ||
+  # shellcheck disable=SC2086  # EXTRA: words
+  "$REPLAY" --carmen "$LOG" --relations "$RELATIONS" ${EXTRA:-} "$@" --out "$T/$NAME" > "$T/$NAME.txt" 2>&1 ||
     { cat "$T/$NAME.txt" >&2; fail "dpcr-replay $*"; }
   cat "$T/$NAME.txt"
   E=$(sed -n 's/.*relations \([0-9.]*\) +- .*/\1/p' "$T/$NAME.txt")
@@ -88,6 +91,8 @@ case "$MODE" in
       --odom-scale 0.962 0.956 || fail "corrupt_carmen.py"
     check_draws 0.03 '"loop_closures_unconfirmed": [1-9]' "no closure waited" "18.5 3.6" "21 3.8" ;;
   draws) check_draws 0.05 '"translation_switched_off": 0' "the wheels were set aside" "21 3.8" "20 4.2" ;;
-  closures) check_draws 0.03 '"loop_closures_unconfirmed": [1-9]' "no closure waited" "23 4" "17.5 3.6" "23 3.8" ;;
+  closures)
+    EXTRA="--calibrate-odometry false"
+    check_draws 0.03 '"loop_closures_unconfirmed": [1-9]' "no closure waited" "23 4" "17.5 3.6" "23 3.8" ;;
   *) fail "unknown mode $MODE (default, draws, closures or guess)" ;;
 esac
