@@ -20,14 +20,14 @@
 #include "core/config.hpp"
 #include "core/front_end/first_registration.hpp"
 #include "core/front_end/odometry_buffer.hpp"
+#include "core/front_end/odometry_calibration.hpp"
+#include "core/front_end/odometry_stall.hpp"
 #include "core/front_end/region_set.hpp"
 #include "core/front_end/region_tracker.hpp"
 #include "core/front_end/scan_motion.hpp"
 #include "core/front_end/start_heading.hpp"
 #include "core/front_end/start_scans.hpp"
 #include "core/front_end/submap.hpp"
-#include "core/front_end/odometry_calibration.hpp"
-#include "core/front_end/odometry_stall.hpp"
 #include "core/front_end/wheel_check.hpp"
 #include "core/geometry/scan.hpp"
 #include "core/geometry/scan_projection.hpp"
@@ -149,7 +149,6 @@ class FrontEnd {
   // and per second (the de-skew's, core/front_end/scan_motion.hpp).
   Pose2 ConstantVelocity(std::int64_t dt_us) const;
   Pose2 VelocityPerSecond() const;
-  // The scan's registered step as the next constant-velocity guess (acceleration_limit.hpp).
   // The wheels' step since the last scan (their pose now: `odom`), calibrated, a stall's catch-up
   // taken from where it stalled (OdometryCalibration, OdometryStall; the constant velocity's step
   // tells a catch-up from wheels that resume where they stopped); and, after the scan's
@@ -157,6 +156,7 @@ class FrontEnd {
   Pose2 WheelStep(const Pose2& odom, bool wheels, const Pose2& constant_velocity);
   void AfterWheelStep(const Pose2& registered_step, std::int64_t stamp_us, bool registered, bool keep_out);
   void WheelsUnmeasured(std::int64_t stamp_us);
+  // The scan's registered step as the next constant-velocity guess (acceleration_limit.hpp).
   Pose2 GuessedVelocityStep(const Pose2& step, std::int64_t dt_us) const;
   // After a rejected scan: the last motion fades (see the definition for what is held).
   void FadeConstantVelocity();
@@ -416,7 +416,7 @@ class FrontEnd {
   bool start_pending_ = false;
   bool step_turn_measured_ = false;
   bool step_turn_from_wheels_ = false;
-  bool wheel_step_valid_ = false;  // wheel_step_ holds a step of trusted wheels
+  bool wheel_step_valid_ = false;  // wheel_step_ holds one scan's step of the wheels (not a catch-up)
   bool start_wheel_turns_ = false;
   bool bent_ = false;             // the last scan's de-skew was doubtful (RegisterRedeskewed)
   std::uint8_t bent_kept_out_ = 0;  // bent scans kept out in a row

@@ -365,7 +365,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--calibrate-odometry", opt.calibrate_odometry, "calibrate the wheels' step and turn scales online from the "
                  "registrations and predict with them (FrontEndConfig::calibrate_odometry; core/front_end/odometry_calibration.hpp)")
-      ->capture_default_str();
+      ->default_str("true");
   app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");
   app.add_flag("--write-regions", opt.write_regions,
                "also write regions.tsv (each scan's map and pose in it) and graph.tsv (final anchors and edges)");

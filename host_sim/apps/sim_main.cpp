@@ -415,7 +415,7 @@ void AddSensorOptions(CLI::App& app, Options& opt) {
       ->expected(2)->delimiter(',')->check(CLI::Range(0, 255));
   app.add_option("--calibrate-odometry", opt.calibrate_odometry, "calibrate the wheels' step and turn scales online from the "
                  "registrations and predict with them (FrontEndConfig::calibrate_odometry; core/front_end/odometry_calibration.hpp)")
-      ->capture_default_str();
+      ->default_str("true");
   app.add_option("--start-scans", opt.start_scans, "keep scans of the first seconds with the gyro's turn and, at the end, place "
                  "the start in the finished first map with them (StartScansConfig::enabled; core/front_end/start_scans.hpp)")
       ->default_str("true");
