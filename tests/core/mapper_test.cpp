@@ -126,12 +126,17 @@ TEST_CASE("A full region pool stops map growth, keeps the pose, and says so") {
   REQUIRE(m->counters().scans == 3000);
   const dpcr::Pose2 start = run.Sample(0.095f, 0.25f, 30.0f).pose;
   const dpcr::Pose2 expected = dpcr::Between(start, run.Sample(299.995f, 0.25f, 30.0f).pose);
-  // 5 cm (was 1 cm) after 75 m: the hall's walls are mostly beyond the tiny 6.4 m submap, so most
+  // 5 cm (was 1 cm; 10 cm below) after 75 m: the hall's walls are mostly beyond the tiny 6.4 m submap, so most
   // matches are weak (inlier ratio < 0.6) and rebuild the reference early with the lower threshold
   // (FrontEndConfig::weak_match_*); the pose drifts 2.1 cm along the lanes, the weak direction, and
   // 4.8 cm since a rejection streak restarts the submap after 5 rejections instead of 10
   // (FrontEndConfig::submap_restart_after_rejections): the restarted submap forgets the hall.
-  REQUIRE(m->pose().x == Approx(expected.x).margin(5e-2));
+  // 10 cm (was 5 cm): with the wheels calibrated online the drift is 3.9 cm on x86-64 and 6.0 cm
+  // on armhf under qemu, where the floats round otherwise (4.8 cm on both without calibration):
+  // a degenerate hall's drift is chaotic. What this checks is that a full pool keeps the pose,
+  // not the hall's accuracy; a lost pose is metres off.
+  INFO("x " << m->pose().x << " expected " << expected.x << ", first registrations rejected " << m->front_end_counters().first_rejected);
+  REQUIRE(m->pose().x == Approx(expected.x).margin(0.1));
 }
 
 TEST_CASE("Regional maps learn at the slow rate once they hold the configured scans") {
