@@ -1,14 +1,9 @@
 #include "core/front_end/odometry_calibration.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dpcr {
-
-namespace {
-
-float Clamp(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
-
-}  // namespace
 
 void OdometryCalibration::Add(const Pose2& registered, const Pose2& wheels) {
   const float wheels_m = std::hypot(wheels.x, wheels.y);
@@ -31,12 +26,12 @@ void OdometryCalibration::Add(const Pose2& registered, const Pose2& wheels) {
 
 float OdometryCalibration::translation_scale() const {
   if (distance_m_ < kMinDistanceM || !(sum_wheels_sq_ > 0.0f)) return 1.0f;
-  return Clamp(sum_reg_dot_wheels_ / sum_wheels_sq_, 1.0f - kMaxScaleError, 1.0f + kMaxScaleError);
+  return std::clamp(sum_reg_dot_wheels_ / sum_wheels_sq_, 1.0f - kMaxScaleError, 1.0f + kMaxScaleError);
 }
 
 float OdometryCalibration::turn_scale() const {
   if (turned_rad_ < kMinTurnRad || !(sum_rr_ > 0.0f)) return 1.0f;
-  return Clamp(sum_rt_ / sum_rr_, 1.0f - kMaxScaleError, 1.0f + kMaxScaleError);
+  return std::clamp(sum_rt_ / sum_rr_, 1.0f - kMaxScaleError, 1.0f + kMaxScaleError);
 }
 
 Pose2 OdometryCalibration::Apply(const Pose2& wheels) const {

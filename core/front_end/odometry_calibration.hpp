@@ -3,7 +3,7 @@
 // nominal figures): every predicted step is then too long or too short and every turn too large
 // or too small. The first registration pulls each scan back, but its odometry prior pulls the
 // other way, and what is left is local error. intel.clf's odometry overstates its steps by 4 %
-// and its turns by 4.4 % (measured against the registered steps); calibrated offline, the 64
+// and its turns by 4.6 % (measured against the registered steps); calibrated offline, the 64
 // draws of tools/bench/log_perturbations.sh went from a median of 0.021 to 0.019 m.
 //
 // The model, per scan step (the robot's frame at the earlier scan):

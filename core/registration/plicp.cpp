@@ -160,9 +160,9 @@ Eigen::Vector3f SolveStep(Eigen::Matrix3f h, Eigen::Vector3f g, const Pose2& pos
 // onto a room not yet seen) has few inliers for its size, and a match on what does overlap is
 // rejected for the ratio alone. Its pose then fell back to the prediction, and a vacuum's or a
 // logger's odometry that under-reports a fast turn by a few degrees a scan left the scans mapped
-// rotated, the next ones matching worse: in a replay of mit-csail.clf a turn of 120° in 2.5 s into a corridor
-// went from one scan at 47.5 % inliers to five rejected and a heading 15° off for the rest of the
-// log. A fit is taken when the part that overlaps is large in its own right and fits as closely
+// rotated, the next ones matching worse: in a replay of mit-csail.clf a turn of 120° in 2.5 s
+// into a corridor went from one scan at 47.5 % inliers to five rejected and a heading 15° off for
+// the rest of the log. A fit is taken when the part that overlaps is large in its own right and fits as closely
 // as the walls' noise allows: at least 70 % of the inlier ratio asked, five times the inliers
 // asked, and half the mean residual allowed.
 bool PartialOverlapFits(const RegistrationResult& r, const PlicpConfig& config) {
