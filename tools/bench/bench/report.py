@@ -248,7 +248,7 @@ def _logs(results, ref, plot_dir, docs_dir):
         "(and rotational) error over the ground-truth relations of Kümmerle et al. 2009, all pairs and split at "
         "10 s apart (near pairs: local accuracy; far pairs: global consistency). *AddScan*: percentiles of the "
         "per-scan time (`--scan-times`); *process wall*: the whole replay, parsing and output included, median "
-        "over the repetitions; *peak RSS*: the process's maximum resident memory (the building profile's mapper "
+        "over the repetitions; *peak RSS*: the process's maximum resident memory (its VmHWM; the building profile's mapper "
         "is 8 MB of it). Quoted rows: Cartographer's published intel figure, and the figures measured "
         "earlier for this project on this kind of machine (total time and peak memory of the whole run).",
         "",
