@@ -195,8 +195,9 @@ Pose2 FrontEnd::WheelStep(const Pose2& odom, bool wheels, const Pose2& constant_
   return step;
 }
 
-void FrontEnd::AfterWheelStep(const Pose2& registered_step, std::int64_t stamp_us, bool registered, bool keep_out) {
-  wheel_check_.AddScan(registered_step, last_odom_, stamp_us, registered && consecutive_rejections_ == 0);
+void FrontEnd::AfterWheelStep(const Pose2& registered_step, std::int64_t stamp_us, bool registered, bool keep_out,
+                              bool clean_fit) {
+  wheel_check_.AddScan(registered_step, last_odom_, stamp_us, registered && consecutive_rejections_ == 0, clean_fit);
   stall_.AddRegistered(registered_step);
   // The calibration takes only a clean measure of the wheels: accepted, not degenerate (along a
   // corridor the registration returns the prediction), the wheels trusted.
@@ -272,7 +273,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   }
   if (may_turn_grid) TurnFrameFromWalls(stamp_us, Span<const Point2>(s_.hits.data(), projected.hits), &previous, &predicted);
   // 2. First registration against the submap (not for the very first scan: nothing to match).
-  bool keep_out = false, bent = false;
+  bool keep_out = false, bent = false, clean_fit = false;
   const bool first = s_.submap->size() == 0;
   const std::uint32_t restarts = counters_.submap_restarts;
   bent_against_single_ = false;
@@ -280,13 +281,13 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   if (registered) {
     RebuildSubmapReferenceIfDue();
     const bool uncertain = UncertainPrediction(predicted);
-    RegisterScan(beams, motion, since_last_us, &projected, predicted);
+    clean_fit = RegisterScan(beams, motion, since_last_us, &projected, predicted);
     keep_out = AfterFirstRegistration(uncertain, since_last_us, projected.hits);
     if (!keep_out) keep_out = bent = KeepOutBent(projected.hits);
   } else {
     pose_ = predicted;
   }
-  AfterWheelStep(Between(previous, pose_), stamp_us, registered, keep_out);
+  AfterWheelStep(Between(previous, pose_), stamp_us, registered, keep_out, clean_fit);
   last_motion_ = GuessedVelocityStep(Between(previous, pose_), since_last_us);
   if (consecutive_rejections_ > 0) FadeConstantVelocity();
   last_motion_us_ = static_cast<std::int32_t>(since_last_us);
@@ -641,7 +642,7 @@ void FrontEnd::RefitSubmapLines() {
   (void)ref.EndPointRefit(config_.front_end.submap_refit_min_points);
 }
 
-void FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, ProjectedScan* projected,
+bool FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, ProjectedScan* projected,
                             const Pose2& predicted) {
   const FrontEndConfig& f = config_.front_end;
   const bool sparse = SparseScan(f, projected->hits, beams.size());
@@ -668,6 +669,7 @@ void FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, st
     ++fe_counters_.first_rejected;
     ++consecutive_rejections_;
   }
+  return r.verdict == Status::kOk && r.mean_residual_m <= 0.5f * plicp.max_mean_residual_m;
 }
 
 bool FrontEnd::ImplausibleWithoutWheels(const Pose2& registered, const Pose2& predicted, const ScanMotion& motion,

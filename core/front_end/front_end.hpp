@@ -154,7 +154,7 @@ class FrontEnd {
   // tells a catch-up from wheels that resume where they stopped); and, after the scan's
   // registration, what those learn from it.
   Pose2 WheelStep(const Pose2& odom, bool wheels, const Pose2& constant_velocity);
-  void AfterWheelStep(const Pose2& registered_step, std::int64_t stamp_us, bool registered, bool keep_out);
+  void AfterWheelStep(const Pose2& registered_step, std::int64_t stamp_us, bool registered, bool keep_out, bool clean_fit);
   void WheelsUnmeasured(std::int64_t stamp_us);
   // The scan's registered step as the next constant-velocity guess (acceleration_limit.hpp).
   Pose2 GuessedVelocityStep(const Pose2& step, std::int64_t dt_us) const;
@@ -163,7 +163,9 @@ class FrontEnd {
   bool HoldsVelocity() const {
     return HeadingMeasured() && !WheelsMeasured() && streak_us_ <= kHoldTranslationInStreakUs;
   }
-  DPCR_STAGE void RegisterScan(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, ProjectedScan* projected,
+  // Returns whether the scan fitted cleanly: accepted, its mean residual within half the bound
+  // (WheelCheck::AddScan takes only such fits' word that the wheels spin on).
+  DPCR_STAGE bool RegisterScan(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, ProjectedScan* projected,
                                const Pose2& predicted);
   // Without wheels the de-skew assumed the last motion's velocity; a turn or a drive that started
   // or stopped since leaves the scan bent (a spin-up to 120°/s bends a 5 Hz revolution by ~7°).

@@ -66,7 +66,7 @@ void FrontEnd::RelocaliseScan(Span<const Beam> beams, const ScanMotion& motion, 
   }
   // Local tracking: the search's answer is carried from its frozen scan to the current one.
   RebuildSubmapReferenceIfDue();
-  RegisterScan(beams, motion, dt_us, projected, predicted);
+  (void)RegisterScan(beams, motion, dt_us, projected, predicted);
   hits = projected->hits;  // a re-deskewed scan was projected again
   if (consecutive_rejections_ > 0) {
     localiser_.Cancel();  // the frozen scan's place in the submap is no longer known

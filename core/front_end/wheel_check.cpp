@@ -60,9 +60,10 @@ void WheelCheck::RestartWindows(const Pose2& wheels, std::int64_t stamp_us) {
   translation_start_us_ = turn_start_us_ = stamp_us;
   turned_ = wheels_turned_ = 0.0f;
   window_open_ = true;
+  window_unclean_ = false;
 }
 
-void WheelCheck::AddScan(const Pose2& step, const Pose2& wheels, std::int64_t stamp_us, bool tracked) {
+void WheelCheck::AddScan(const Pose2& step, const Pose2& wheels, std::int64_t stamp_us, bool tracked, bool clean_fit) {
   if (!have_wheels_ || !tracked) {
     // An untracked scan says nothing of where the robot went.
     window_open_ = wheels_short_ = false;
@@ -72,6 +73,7 @@ void WheelCheck::AddScan(const Pose2& step, const Pose2& wheels, std::int64_t st
     RestartWindows(wheels, stamp_us);
     return;
   }
+  if (!clean_fit) window_unclean_ = true;
   const float c = std::cos(registered_heading_), s = std::sin(registered_heading_);
   moved_xy_.x += c * step.x - s * step.y;
   moved_xy_.y += s * step.x + c * step.y;
@@ -89,14 +91,16 @@ void WheelCheck::CheckTranslation(const Pose2& wheels, std::int64_t stamp_us) {
   wheels_short_ = moved >= kDoubtDistanceM && wheeled < kMissRatio * moved;
   const float longer = std::fmax(moved, wheeled), shorter = std::fmin(moved, wheeled);
   if (longer >= kWindowDistanceM) {
-    const bool miss = shorter < kMissRatio * longer, agree = shorter >= kAgreeRatio * longer;
+    const bool wheels_long = wheeled > moved;
+    // Wheels that ran on count as spinning only on the word of clean fits (AddScan).
+    const bool miss = shorter < kMissRatio * longer && !(wheels_long && window_unclean_);
+    const bool agree = shorter >= kAgreeRatio * longer;
     if (miss) ++translation_misses_;
     if (miss && !translation_.rejected) {
       // Misses count in a row only the same way round. Logged odometry that stalls and then
       // catches up in one step (mit-csail.clf: 0.9 m in one window after two of 0.04 and 0 m
       // against 0.46 m registered) is neither wheels that miss the motion nor wheels that spin on,
       // and switching it off lost the robot for 240 of the log's 420 s.
-      const bool wheels_long = wheeled > moved;
       if (translation_.run > 0 && wheels_long != miss_wheels_long_) translation_.run = 0;
       miss_wheels_long_ = wheels_long;
     }
@@ -107,7 +111,7 @@ void WheelCheck::CheckTranslation(const Pose2& wheels, std::int64_t stamp_us) {
     moved_xy_ = Point2{0.0f, 0.0f};
     start_wheels_xy_ = Point2{wheels.x, wheels.y};
     translation_start_us_ = stamp_us;
-    wheels_short_ = false;
+    wheels_short_ = window_unclean_ = false;
   }
 }
 
