@@ -1,10 +1,8 @@
 #include "host_sim/eval/relations_consistency.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
-#include <utility>
 
 namespace dpcr::eval {
 namespace {

@@ -2,7 +2,7 @@
 // three scans in a loop (a-b, b-c, a-c), composing them must give the identity; what is left is
 // the relations' own error. It bounds what the relations metric can show: an estimate with no
 // error at all still scores the relations' noise (intel.relations: 327 loops, each relation
-// about 1.5 cm and 0.23 deg rms off by that measure; docs/back-end.md).
+// about 1.6 cm and 0.23 deg rms off by that measure; docs/back-end.md).
 #pragma once
 
 #include <cstddef>

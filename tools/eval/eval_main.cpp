@@ -10,6 +10,20 @@
 #include "host_sim/eval/accuracy.hpp"
 #include "host_sim/eval/relations_consistency.hpp"
 
+namespace {
+
+// The relations' own error (dpcr-eval --relations FILE --consistency).
+nlohmann::json ConsistencyFigures(const std::string& relations) {
+  const auto c = dpcr::eval::CheckRelationsConsistency(dpcr::eval::ReadRelationsFile(relations));
+  std::printf("relations consistency: %zu loops of three, left %.4f m / %.3f deg on average; "
+              "per relation %.4f m / %.3f deg rms\n",
+              c.loops, c.loop_trans_mean_m, c.loop_rot_mean_deg, c.relation_trans_rms_m, c.relation_rot_rms_deg);
+  return {{"loops", c.loops}, {"loop_trans_mean_m", c.loop_trans_mean_m}, {"loop_rot_mean_deg", c.loop_rot_mean_deg},
+          {"relation_trans_rms_m", c.relation_trans_rms_m}, {"relation_rot_rms_deg", c.relation_rot_rms_deg}};
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"dpcr-eval: LocErr_ave / ATE / max error against ground truth, or the relations metric"};
   std::string trajectory, ground_truth, relations, out;
@@ -33,22 +47,8 @@ int main(int argc, char** argv) {
   }
   try {
     nlohmann::json j;
-    if (consistency) {
-      const auto c = dpcr::eval::CheckRelationsConsistency(dpcr::eval::ReadRelationsFile(relations));
-      j["relations_consistency"] = {{"loops", c.loops}, {"loop_trans_mean_m", c.loop_trans_mean_m},
-                                    {"loop_rot_mean_deg", c.loop_rot_mean_deg}, {"relation_trans_rms_m", c.relation_trans_rms_m},
-                                    {"relation_rot_rms_deg", c.relation_rot_rms_deg}};
-      std::printf("relations consistency: %zu loops of three, left %.4f m / %.3f deg on average; "
-                  "per relation %.4f m / %.3f deg rms\n", c.loops, c.loop_trans_mean_m, c.loop_rot_mean_deg,
-                  c.relation_trans_rms_m, c.relation_rot_rms_deg);
-      if (!out.empty()) {
-        std::ofstream f(out);
-        f << j.dump(2) << "\n";
-        if (!f) throw std::runtime_error(out + ": write failed");
-      }
-      return 0;
-    }
-    const auto estimate = dpcr::eval::ReadTumFile(trajectory);
+    if (consistency) j["relations_consistency"] = ConsistencyFigures(relations);
+    const auto estimate = consistency ? dpcr::eval::Trajectory() : dpcr::eval::ReadTumFile(trajectory);
     if (gt->count() > 0) {
       const auto a = dpcr::eval::EvaluateAgainstGroundTruth(estimate, dpcr::eval::ReadTumFile(ground_truth), sample_period_s);
       j["accuracy"] = {{"loc_err_ave_m", a.loc_err_ave_m}, {"ate_rmse_m", a.ate_rmse_m},
@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
       std::printf("LocErr_ave %.4f m  ATE RMSE %.4f m  max %.4f m  (%zu samples, %zu unmatched)\n", a.loc_err_ave_m,
                   a.ate_rmse_m, a.max_err_m, a.samples, a.unmatched);
     }
-    if (rel->count() > 0) {
+    if (rel->count() > 0 && !consistency) {
       const auto r = dpcr::eval::EvaluateRelations(estimate, dpcr::eval::ReadRelationsFile(relations));
       j["relations"] = {{"trans_mean_m", r.trans_mean_m}, {"trans_std_m", r.trans_std_m}, {"rot_mean_deg", r.rot_mean_deg},
                         {"rot_std_deg", r.rot_std_deg}, {"matched", r.matched}, {"unmatched", r.unmatched}};
