@@ -669,7 +669,7 @@ bool FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, st
     ++fe_counters_.first_rejected;
     ++consecutive_rejections_;
   }
-  return r.verdict == Status::kOk && r.mean_residual_m <= 0.5f * plicp.max_mean_residual_m;
+  return r.verdict == Status::kOk && FitsCleanly(r, plicp);
 }
 
 bool FrontEnd::ImplausibleWithoutWheels(const Pose2& registered, const Pose2& predicted, const ScanMotion& motion,

@@ -163,8 +163,8 @@ class FrontEnd {
   bool HoldsVelocity() const {
     return HeadingMeasured() && !WheelsMeasured() && streak_us_ <= kHoldTranslationInStreakUs;
   }
-  // Returns whether the scan fitted cleanly: accepted, its mean residual within half the bound
-  // (WheelCheck::AddScan takes only such fits' word that the wheels spin on).
+  // Returns whether the scan was accepted and FitsCleanly (WheelCheck::AddScan takes only such
+  // fits' word that the wheels spin on).
   DPCR_STAGE bool RegisterScan(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, ProjectedScan* projected,
                                const Pose2& predicted);
   // Without wheels the de-skew assumed the last motion's velocity; a turn or a drive that started

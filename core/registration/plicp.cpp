@@ -167,7 +167,7 @@ Eigen::Vector3f SolveStep(Eigen::Matrix3f h, Eigen::Vector3f g, const Pose2& pos
 // asked, and half the mean residual allowed.
 bool PartialOverlapFits(const RegistrationResult& r, const PlicpConfig& config) {
   return r.inlier_ratio >= 0.7f * config.min_inlier_ratio && r.inliers >= 5 * config.min_correspondences &&
-         r.mean_residual_m <= 0.5f * config.max_mean_residual_m;
+         FitsCleanly(r, config);
 }
 
 // The verdict: enough support, small residual, observable, plausible.

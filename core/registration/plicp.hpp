@@ -73,6 +73,13 @@ struct RegistrationResult {
   Status verdict = Status::kNotEnoughData;  // kOk, kRejected or kNotEnoughData
 };
 
+// A fit as close as the walls' noise allows: the mean residual within half the bound. Trusted
+// beyond the usual acceptance (PartialOverlapFits in plicp.cpp; the wheel check's word that
+// wheels spin on, FrontEnd::RegisterScan).
+inline bool FitsCleanly(const RegistrationResult& r, const PlicpConfig& config) {
+  return r.mean_residual_m <= 0.5f * config.max_mean_residual_m;
+}
+
 // One correspondence: residual = normal · w - offset (a line), or w - q (point-to-point).
 struct Correspondence {
   Point2 normal;

@@ -40,6 +40,21 @@ Pose2 Drive(WheelCheck* check, Wheels wheels, float seconds, Pose2 start = Pose2
   return p;
 }
 
+// Stuck after driving to `at` (5 s in): for up to 6 s the wheels drive on at 0.25 m/s while every
+// scan registers the same pose, until the wheels are set aside. Every `poor_every`-th registration
+// does not fit cleanly (0: all do).
+void StandStuck(WheelCheck* check, const Pose2& at, int poor_every) {
+  REQUIRE_FALSE(check->translation_doubted());
+  Pose2 wheels = at;
+  for (int i = 1; i <= 60 && !check->translation_ignored(); ++i) {
+    for (int k = 1; k <= 10; ++k) {
+      wheels = wheels * Pose2{0.0025f, 0.0f, 0.0f};
+      check->AddOdometry(WheelSample(5000000 + (i - 1) * 100000 + k * 10000, wheels, Wheels::kTrue));
+    }
+    check->AddScan(Pose2::Identity(), wheels, 5000000 + i * 100000, true, poor_every == 0 || i % poor_every != 0);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("WheelCheck: wheels that measure the motion are kept") {
@@ -131,17 +146,7 @@ TEST_CASE("WheelCheck: a standing robot's jitter and untracked scans never switc
 
 TEST_CASE("WheelCheck: wheels that spin on while the lidar sees the robot stand are set aside") {
   WheelCheck check;
-  Pose2 p = Drive(&check, Wheels::kTrue, 5.0f);
-  REQUIRE_FALSE(check.translation_doubted());
-  // Stuck: the wheels drive on at 0.25 m/s, every scan registers the same pose.
-  Pose2 wheels = p;
-  for (int i = 1; i <= 60 && !check.translation_ignored(); ++i) {
-    for (int k = 1; k <= 10; ++k) {
-      wheels = wheels * Pose2{0.0025f, 0.0f, 0.0f};
-      check.AddOdometry(WheelSample(5000000 + (i - 1) * 100000 + k * 10000, wheels, Wheels::kTrue));
-    }
-    check.AddScan(Pose2::Identity(), wheels, 5000000 + i * 100000, true);
-  }
+  StandStuck(&check, Drive(&check, Wheels::kTrue, 5.0f), 0);
   CHECK(check.translation_ignored());
   CHECK(check.translation_misses() == 3);
 }
@@ -152,16 +157,7 @@ TEST_CASE("WheelCheck: registrations that fit poorly do not say the wheels spin 
   // wheels aside; one poor fit in a window keeps that window from voting.
   for (const int poor_every : {1, 5}) {
     WheelCheck check;
-    Pose2 p = Drive(&check, Wheels::kTrue, 5.0f);
-    REQUIRE_FALSE(check.translation_doubted());
-    Pose2 wheels = p;
-    for (int i = 1; i <= 60; ++i) {
-      for (int k = 1; k <= 10; ++k) {
-        wheels = wheels * Pose2{0.0025f, 0.0f, 0.0f};
-        check.AddOdometry(WheelSample(5000000 + (i - 1) * 100000 + k * 10000, wheels, Wheels::kTrue));
-      }
-      check.AddScan(Pose2::Identity(), wheels, 5000000 + i * 100000, true, i % poor_every != 0);
-    }
+    StandStuck(&check, Drive(&check, Wheels::kTrue, 5.0f), poor_every);
     CHECK_FALSE(check.translation_ignored());
     CHECK(check.translation_misses() == 0);
   }
