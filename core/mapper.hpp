@@ -106,6 +106,14 @@ class Mapper {
   // At the end of a run, before the trajectory is written: the start placed in the finished first
   // map (FrontEnd::RefineStart, core/front_end/start_scans.hpp).
   StartRefinement RefineStart() { return front_end_.RefineStart(); }
+  // A trajectory refined after the run (FrontEnd::RecordScanPoints, host_sim/output/trajectory_refinement.hpp):
+  // each scan's returns recorded as it is mapped, registered again at the end in its finished map.
+  void RecordScanPoints(Span<Point2> buffer) { front_end_.RecordScanPoints(buffer); }
+  std::size_t recorded_points() const { return front_end_.recorded_points(); }
+  bool BeginMapRegistration(int region) { return front_end_.BeginMapRegistration(region); }
+  RegistrationResult RegisterInMap(Span<const Point2> robot_points, const Pose2& in_region, int max_iterations) {
+    return front_end_.RegisterInMap(robot_points, in_region, max_iterations);
+  }
 
   // World-frame bounds of everything mapped so far.
   CellBox MapBounds() const {

@@ -84,6 +84,8 @@ class BackEnd {
   explicit BackEnd(const BackEndStorage& storage) : s_(storage) {}
   BackEnd(const BackEnd&) = delete;
   BackEnd& operator=(const BackEnd&) = delete;
+  // Its storage, which the front end's global localiser borrows while the back end is idle.
+  const BackEndStorage& storage() const { return s_; }
 
   // `reference`: how the regional maps become registration references (the front end's, for the
   // lidar's noise: ReferenceForNoise); its obstacle threshold also picks the maps' obstacle cells.

@@ -246,7 +246,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
     ++counters_.scans_bad_stamp;  // nothing else changes: the next scan is measured from the last good one
     return Status::kInvalidArgument;
   }
-  (void)scan_marker_.Next();
+  BeginScan();
   // 1. Prediction and de-skew.
   Pose2 previous = pose_;
   const std::int64_t since_last_us = ScanInterval(stamp_us);
@@ -276,7 +276,6 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   bool keep_out = false, bent = false, clean_fit = false;
   const bool first = s_.submap->size() == 0;
   const std::uint32_t restarts = counters_.submap_restarts;
-  bent_against_single_ = false;
   const bool registered = config_.front_end.enable_registration && s_.submap->size() > 0;
   if (registered) {
     RebuildSubmapReferenceIfDue();
@@ -308,7 +307,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   // 3. Regions, and the second registration.
   TrackRegions();
   const bool accepted = registered && !keep_out && consecutive_rejections_ == 0;
-  KeepStartScan(stamp_us, start_scan, projected.hits, accepted);  // before the map takes the points into its frame
+  KeepScanPoints(stamp_us, start_scan, projected.hits, accepted);  // before the map takes the points into its frame
   // 4b. Once into a regional map (InsertIntoMaps); if not, its pose is still known in the anchor region's frame.
   if (!InsertIntoMaps(projected, pose(), keep_out, TurningFast())) {
     last_scan_region_ = anchor_region_ >= 0 ? anchor_region_ : regions_.current();
@@ -960,6 +959,35 @@ void FrontEnd::EnterKnownRegion() {
   lost_in_region_ = true;
   BeginLoopClosure(anchor_region_);
   scans_since_closure_try_ = 0;
+}
+
+void FrontEnd::BeginScan() {
+  (void)scan_marker_.Next();
+  recorded_points_ = 0;
+  bent_against_single_ = false;
+}
+
+void FrontEnd::KeepScanPoints(std::int64_t stamp_us, bool start_scan, std::size_t hits, bool accepted) {
+  KeepStartScan(stamp_us, start_scan, hits, accepted);
+  recorded_points_ = hits < s_.recorded.size() ? hits : s_.recorded.size();
+  for (std::size_t i = 0; i < recorded_points_; ++i) s_.recorded[i] = s_.hits[i];
+}
+
+bool FrontEnd::BeginMapRegistration(int region) {
+  if (region < 0 || region >= regions_.size()) return false;
+  if (back_end_.searching()) back_end_.CancelLoopClosure();  // the search grid shares the reference's table
+  const int maps[2] = {region, -1};
+  BuildRegionReference(maps, 1);
+  InvalidateRegionReference();  // not the pair the second registration expects
+  return true;
+}
+
+RegistrationResult FrontEnd::RegisterInMap(Span<const Point2> robot_points, const Pose2& in_region, int max_iterations) {
+  PlicpConfig plicp = FirstRegistrationBase(config_, false);
+  plicp.max_iterations = max_iterations;
+  const FrontEndConfig& f = config_.front_end;
+  const PosePrior prior{in_region, f.prior_info_xy, f.prior_info_theta};
+  return RegisterImproved(*s_.region_reference, robot_points, in_region, &prior, plicp, s_.correspondences);
 }
 
 void FrontEnd::InvalidateRegionReference() { reference_maps_[0] = reference_maps_[1] = -1; }

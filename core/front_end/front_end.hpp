@@ -68,7 +68,9 @@ struct FrontEndCounters {
   FirstRegistrationStats search;               // the coarse pose search of the first registration
 };
 
-struct FrontEndStorage {
+// The arrays the front end works in (Mapper<Profile> owns them). The front end keeps this part;
+// the back end keeps its own (FrontEndStorage::back_end), and the front end reaches it there.
+struct FrontEndBuffers {
   Submap* submap = nullptr;
   RegistrationReference* submap_reference = nullptr;
   RegistrationReference* region_reference = nullptr;
@@ -79,8 +81,12 @@ struct FrontEndStorage {
   Span<CellIndex> scratch;  // the RegionSet's InsertRays scratch, kMaxBeams
   Span<Correspondence> correspondences;  // registration scratch, kMaxBeams
   Span<PackedBeam> pending_beams;  // the fixed-lag de-skew's waiting scan, kMaxBeams
-  BackEndStorage back_end;
+  Span<Point2> recorded;  // RecordScanPoints' buffer (host tools; empty on the robot)
   CoarseScoreGrid* search_grid = nullptr;  // the first registration's coarse search (null: none)
+};
+
+struct FrontEndStorage : FrontEndBuffers {
+  BackEndStorage back_end;
 };
 
 class FrontEnd {
@@ -126,6 +132,20 @@ class FrontEnd {
   // lost robot's search: the start's uses the localiser) and gives the kept scans' tiles back.
   // Once refined, later calls return the same offset and move.
   StartRefinement RefineStart();
+
+  // For a trajectory refined after the run (host tools: host_sim/output/trajectory_refinement.hpp).
+  // Given a buffer (kMaxBeams points; none on the robot), AddScan copies into it the returns of
+  // each scan it places while tracking, in the robot frame and de-skewed as registered, before the
+  // maps take them; recorded_points() says how many (0: this scan was not recorded: a lost robot's,
+  // one held back by the fixed-lag de-skew, one without returns, or a bad stamp).
+  void RecordScanPoints(Span<Point2> buffer) { s_.recorded = buffer; }
+  std::size_t recorded_points() const { return recorded_points_; }
+  // At the end of a run: BeginMapRegistration builds the reference of map `region` as it is now
+  // (false: no such map), cancelling a loop-closure search in progress; then each RegisterInMap
+  // registers recorded points in that map from their pose in it, `in_region`, with the first
+  // registration's prior and acceptance and at most `max_iterations` steps.
+  bool BeginMapRegistration(int region);
+  RegistrationResult RegisterInMap(Span<const Point2> robot_points, const Pose2& in_region, int max_iterations);
 
   // Loading a saved map (core/persistence/map_reader.hpp; front_end_restore.cpp), after Init:
   // RestoreRegion appends the regional maps in their saved order (nullptr: pool full); after the
@@ -251,6 +271,11 @@ class FrontEnd {
   // gyro's yaw, or the wheels' heading), later ones are kept when due; a pool that ran out takes
   // their tiles back (front_end_start_scans.cpp).
   void KeepStartScan(std::int64_t stamp_us, bool start_scan, std::size_t hits, bool accepted);
+  // What every scan starts from: its marker for the grids, nothing recorded, not bent yet.
+  void BeginScan();
+  // The scan's returns (s_.hits, robot frame) to the start scans (KeepStartScan) and the
+  // RecordScanPoints buffer, before the maps take them into their frames.
+  void KeepScanPoints(std::int64_t stamp_us, bool start_scan, std::size_t hits, bool accepted);
   // The gyro's yaw at the start scan (false: no gyro).
   bool StartGyroYaw(std::int64_t stamp_us, float* yaw) const;
   // RefineStart's parts: the kept scans' headings in the finished first map (the offset), and the
@@ -377,7 +402,7 @@ class FrontEnd {
   // that their centroid, target_pivot_ in the submap's frame, is their origin.
   std::size_t SubmapTarget();
 
-  FrontEndStorage s_;
+  FrontEndBuffers s_;
   MapperConfig config_;
   MapperStatus status_ = MapperStatus::kWaitingForData;
   MapperCounters counters_;
@@ -460,6 +485,7 @@ class FrontEnd {
   std::uint32_t scans_since_closure_try_ = 0;
   float path_at_closure_try_ = 0.0f;
   Pose2 last_scan_in_region_;
+  std::size_t recorded_points_ = 0;  // RecordScanPoints: points copied from the last scan
   // Lost: the global search, and the robot's pose in the submap frame at the scan it searches
   // with (the submap tracks the robot meanwhile, so the answer carries to the current scan).
   GlobalLocaliser localiser_;

@@ -100,15 +100,15 @@ void FrontEnd::StepRelocalisation(std::size_t hits) {
     const int map = regions_.current();
     if (window > 0.0f) {
       const Pose2 centre = regions_[map].anchor.Inverse() * pose();
-      localiser_.BeginLocal(s_.back_end, Span<const Point2>(s_.hits.data(), hits), config_.localisation, map, centre, window);
+      localiser_.BeginLocal(back_end_.storage(), Span<const Point2>(s_.hits.data(), hits), config_.localisation, map, centre, window);
     } else {
-      localiser_.Begin(s_.back_end, Span<const Point2>(s_.hits.data(), hits), config_.localisation);
+      localiser_.Begin(back_end_.storage(), Span<const Point2>(s_.hits.data(), hits), config_.localisation);
     }
     localiser_.LimitHeadings(pose().theta, HeadingWindow());
     frozen_in_submap_ = pose_;
   }
   GlobalFix fix;
-  const Status st = localiser_.Step(s_.back_end, Span<const RegionalMap>(regions_.maps().data(), regions_.maps().size()), config_.front_end.region_width_m,
+  const Status st = localiser_.Step(back_end_.storage(), Span<const RegionalMap>(regions_.maps().data(), regions_.maps().size()), config_.front_end.region_width_m,
                                     ReferenceForNoise(config_.front_end.region_reference, config_), config_.localisation, config_.back_end, &fix);
   // The search used the regional reference (its table, then a build).
   InvalidateRegionReference();
@@ -165,7 +165,7 @@ bool FrontEnd::TakeFix(const GlobalFix& fix) {
   // Where the robot would be now by this fix and by the held one (each places the submap frame).
   const Pose2 frame = SubmapFrameOf(fix);
   Pose2 held;
-  if (localiser_.Held(s_.back_end, &held)) {
+  if (localiser_.Held(back_end_.storage(), &held)) {
     const Pose2 apart = Between(held * pose_, frame * pose_);
     const CorrelativeSearchConfig& sep = config_.back_end.search;
     if (std::hypot(apart.x, apart.y) < 0.5f * sep.peak_separation_m &&
@@ -174,7 +174,7 @@ bool FrontEnd::TakeFix(const GlobalFix& fix) {
       return true;
     }
   }
-  localiser_.Hold(s_.back_end, frame);
+  localiser_.Hold(back_end_.storage(), frame);
   return false;
 }
 

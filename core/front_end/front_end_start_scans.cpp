@@ -118,7 +118,7 @@ void FrontEnd::LocateStart(StartRefinement* out) {
   constexpr float kHeadingWindowRad = 0.1f;
   localiser_.Cancel();
   localiser_.Drop();
-  localiser_.BeginLocal(s_.back_end, points, config_.localisation, start_region_, start_in_region_, kWindowM);
+  localiser_.BeginLocal(back_end_.storage(), points, config_.localisation, start_region_, start_in_region_, kWindowM);
   localiser_.LimitHeadings((regions_[start_region_].anchor * start_in_region_).theta, kHeadingWindowRad);
   constexpr int kMaxSteps = 1000;  // each step is bounded; a round over one map's window ends in a few
   const Span<const RegionalMap> regional(regions_.maps().data(), regions_.maps().size());
@@ -126,7 +126,7 @@ void FrontEnd::LocateStart(StartRefinement* out) {
   GlobalFix fix;
   Status st = Status::kNotEnoughData;
   for (int i = 0; i < kMaxSteps && st == Status::kNotEnoughData; ++i) {
-    st = localiser_.Step(s_.back_end, regional, config_.front_end.region_width_m, reference, config_.localisation, config_.back_end, &fix);
+    st = localiser_.Step(back_end_.storage(), regional, config_.front_end.region_width_m, reference, config_.localisation, config_.back_end, &fix);
   }
   localiser_.Cancel();
   InvalidateRegionReference();  // the search borrowed its table

@@ -50,6 +50,7 @@ struct Options {
   bool calibrate_odometry = true;  // FrontEndConfig::calibrate_odometry
   std::string scan_times;
   bool write_regions = false;
+  bool refine_trajectory = true;  // host_sim/output/trajectory_refinement.hpp
   std::string heading = "model";  // FrontEndConfig::gyro_heading (model: ModelGyroHeading)
   float wheel_radius_m = 0.0f;
   float track_width_m = 0.0f;
@@ -113,8 +114,9 @@ void SaveMapIfAsked(const Options& opt, const MapperType& mapper) {
 }
 
 void PrintSummary(const dpcr::output::RunRecord& run, const nlohmann::json& metrics, const std::string& out) {
+  const double wall = metrics["wall_seconds"].get<double>();  // the trajectory's refinement included
   std::fprintf(stderr, "dpcr-replay: %zu scans in %.2f s (%.0f scans/s), mapper %s, %d regions%s",
-               run.estimate.size(), run.wall_seconds, static_cast<double>(run.estimate.size()) / run.wall_seconds,
+               run.estimate.size(), wall, static_cast<double>(run.estimate.size()) / wall,
                metrics["mapper"].get<std::string>().c_str(), metrics["regions"].get<int>(),
                dpcr::output::TrackingSummary(metrics).c_str());
   if (metrics.contains("relations")) {
@@ -211,6 +213,7 @@ int ReplayCarmen(const Options& opt) {
   dpcr::carmen::CarmenReader reader(in);
   dpcr::output::RunRecord run;
   run.write_regions = opt.write_regions;
+  run.refine_trajectory = opt.refine_trajectory;
   const CarmenInputCounts counts = MapCarmenLog(opt, in, &mapper, &reader, &run);
   if (run.estimate.empty()) throw std::runtime_error(opt.carmen + ": no laser scans in the log");
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -264,6 +267,7 @@ int ReplayDevice(const Options& opt) {
   lidar.timing = opt.lidar_timing == "device" ? dpcr::LidarTiming::kDeviceClock : dpcr::LidarTiming::kArrival;
   dpcr::output::RunRecord run;
   run.write_regions = opt.write_regions;
+  run.refine_trajectory = opt.refine_trajectory;
   TimedMapperSink<MapperType> sink(&mapper, &run);
   dpcr::DeviceReplay replay(files, lidar, &sink);
   std::string error;
@@ -369,6 +373,10 @@ int main(int argc, char** argv) {
   app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");
   app.add_flag("--write-regions", opt.write_regions,
                "also write regions.tsv (each scan's map and pose in it) and graph.tsv (final anchors and edges)");
+  app.add_option("--refine-trajectory", opt.refine_trajectory,
+                 "register each scan again in its finished map at the end (trajectory.tum; the maps are the same "
+                 "either way); false: each scan as the run placed it")
+      ->default_val(true);
   app.add_option("--heading", opt.heading, "--uart: the prediction's heading increment: wheels, or the integrated gyro frames (0x121); "
                  "model: the gyro for an xv11, the wheels for an ld06")
       ->check(CLI::IsMember({"model", "wheels", "gyro"}))->capture_default_str();

@@ -57,6 +57,7 @@ struct Options {
   float region_width_m = 0.0f;  // 0: the configuration's default (FrontEndConfig::region_width_m)
   std::string scan_times;
   bool write_regions = false;
+  bool refine_trajectory = true;  // host_sim/output/trajectory_refinement.hpp
   std::string heading = "model";  // the prediction's heading: model (the lidar's: ModelGyroHeading), wheels, or gyro
   std::string lidar = "ld06";      // ld06, or xv11 (sim::Xv11LidarConfig)
   std::string odometry = "wheels";  // wheels (+ gyro), gyro (no wheel encoders), heading-ticks, none
@@ -134,7 +135,7 @@ template <class MapperType>
 void PrintSummary(const Options& opt, const MapperType& mapper, const dpcr::output::RunRecord& run,
                   const nlohmann::json& metrics) {
   std::fprintf(stderr, "dpcr-sim: %s, %.0f min, %zu scans in %.1f s, mapper %s, %d regions%s",
-               opt.world.c_str(), opt.minutes, run.estimate.size(), run.wall_seconds, mapper.pipeline(),
+               opt.world.c_str(), opt.minutes, run.estimate.size(), metrics["wall_seconds"].get<double>(), mapper.pipeline(),
                mapper.region_count(), dpcr::output::TrackingSummary(metrics).c_str());
   if (metrics.contains("accuracy")) {
     std::fprintf(stderr, ", LocErr_ave %.3f m, ATE %.3f m, max %.3f m", metrics["accuracy"]["loc_err_ave_m"].get<double>(),
@@ -291,6 +292,7 @@ int Run(const Options& opt) {
   const auto start = Clock::now();
   dpcr::output::RunRecord run;
   run.write_regions = opt.write_regions;
+  run.refine_trajectory = opt.refine_trajectory;
   dpcr::apps::Progress progress("sim " + opt.world);
   dpcr::sim::SimEvent event;
   SpinTally spins;
@@ -390,6 +392,10 @@ void AddRunOptions(CLI::App& app, Options& opt) {
   app.add_option("--scan-times", opt.scan_times, "write the time of every AddScan call (ms, one per line) to this file");
   app.add_flag("--write-regions", opt.write_regions,
                "also write regions.tsv (each scan's map and pose in it) and graph.tsv (final anchors and edges)");
+  app.add_option("--refine-trajectory", opt.refine_trajectory,
+                 "register each scan again in its finished map at the end (trajectory.tum; the maps are the same "
+                 "either way); false: each scan as the run placed it")
+      ->default_val(true);
 }
 
 // The robot's sensors and the mapper's knobs measured with them.

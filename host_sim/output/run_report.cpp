@@ -139,6 +139,27 @@ std::string TrackingWarning(const nlohmann::json& m) {
          " %): the map and trajectory are not to be trusted";
 }
 
+namespace {
+
+// metrics.json "relations": all pairs, and split at 10 s apart: local accuracy (front end) and
+// global consistency (back end).
+nlohmann::json RelationsSplitJson(const dpcr::eval::Trajectory& trajectory, const std::vector<dpcr::eval::Relation>& relations) {
+  nlohmann::json j = RelationsJson(dpcr::eval::EvaluateRelations(trajectory, relations));
+  std::vector<dpcr::eval::Relation> near, far;
+  for (const auto& rel : relations) (std::llabs(rel.t2_us - rel.t1_us) < 10'000'000 ? near : far).push_back(rel);
+  j["under_10s"] = RelationsJson(dpcr::eval::EvaluateRelations(trajectory, near));
+  j["over_10s"] = RelationsJson(dpcr::eval::EvaluateRelations(trajectory, far));
+  return j;
+}
+
+nlohmann::json RefinementJson(const RefinementStats& r) {
+  return {{"enabled", r.enabled}, {"scans_recorded", r.recorded}, {"registered", r.registered},
+          {"refused", r.refused}, {"moved_too_far", r.too_far}, {"stored_bytes", r.stored_bytes},
+          {"points_not_stored", r.points_not_stored}, {"seconds", r.seconds}};
+}
+
+}  // namespace
+
 nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, const RunRecord& run,
                                nlohmann::json metrics) {
   WriteRosMap(dir, map);
@@ -150,7 +171,7 @@ nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, cons
   metrics["per_scan_ms"] = {{"median", Percentile(run.per_scan_ms, 0.5)},
                             {"p95", Percentile(run.per_scan_ms, 0.95)},
                             {"max", Percentile(run.per_scan_ms, 1.0)}};
-  metrics["wall_seconds"] = run.wall_seconds;
+  metrics["wall_seconds"] = run.wall_seconds + run.refinement.seconds;  // the refinement is part of the run
   metrics["start_scans"] = StartRefinementMetrics(run.start_refinement);
   metrics["map_size_cells"] = {map.width(), map.height()};
   if (!run.ground_truth.empty()) {
@@ -168,14 +189,10 @@ nlohmann::json WriteRunOutputs(const std::string& dir, const FusedMap& map, cons
     AddAnchorDecomposition(run, &metrics["accuracy"]);
   }
   if (run.relations != nullptr) {
-    const auto r = dpcr::eval::EvaluateRelations(run.estimate, *run.relations);
-    metrics["relations"] = RelationsJson(r);
-    // Split at 10 s apart: local accuracy (front end) and global consistency (back end).
-    std::vector<dpcr::eval::Relation> near, far;
-    for (const auto& rel : *run.relations) (std::llabs(rel.t2_us - rel.t1_us) < 10'000'000 ? near : far).push_back(rel);
-    metrics["relations"]["under_10s"] = RelationsJson(dpcr::eval::EvaluateRelations(run.estimate, near));
-    metrics["relations"]["over_10s"] = RelationsJson(dpcr::eval::EvaluateRelations(run.estimate, far));
+    metrics["relations"] = RelationsSplitJson(run.estimate, *run.relations);
+    if (!run.unrefined.empty()) metrics["relations_unrefined"] = RelationsSplitJson(run.unrefined, *run.relations);
   }
+  metrics["trajectory_refinement"] = RefinementJson(run.refinement);
   metrics["backend"]["calls"] = run.backend_calls;
   metrics["backend"]["total_ms"] = run.backend_total_ms;
   metrics["backend"]["max_ms"] = run.backend_max_ms;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "host_sim/output/map_files.hpp"
+#include "host_sim/output/trajectory_refinement.hpp"
 #include "host_sim/eval/accuracy.hpp"
 #include "host_sim/eval/anchor_errors.hpp"
 #include "host_sim/eval/trajectory.hpp"
@@ -42,6 +43,14 @@ struct RunRecord {
   std::int64_t accuracy_from_us = INT64_MIN;
   bool write_regions = false;  // also regions.tsv and graph.tsv (region_files.hpp)
   dpcr::StartRefinement start_refinement;  // the start placed in the finished first map (FinalizeTrajectory)
+  // The trajectory registered again in the finished maps (trajectory_refinement.hpp): on unless
+  // refine_trajectory is false; the scans' returns are recorded while the run goes.
+  bool refine_trajectory = true;
+  ScanPointRecord scan_points;
+  RefinementStats refinement;
+  // With relations: their error on the trajectory before that refinement (metrics.json
+  // "relations_unrefined"), each scan at its map's final anchor times its pose in the map then.
+  dpcr::eval::Trajectory unrefined;
 };
 
 // An edge's kind as metrics.json and graph.tsv name it (AnchorEdge::kind, dpcr::EdgeKind order).
@@ -59,6 +68,7 @@ template <class MapperType>
 void AddTimedScan(MapperType& mapper, const typename MapperType::ScanType& scan, RunRecord* run) {
   const std::uint64_t work = BackEndWork(mapper);
   const bool searching = mapper.back_end().searching();
+  if (run->refine_trajectory && run->scan_points.scans() == 0) run->scan_points.Attach(mapper);
   const auto t0 = std::chrono::steady_clock::now();
   (void)mapper.AddScan(scan);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -66,6 +76,7 @@ void AddTimedScan(MapperType& mapper, const typename MapperType::ScanType& scan,
   run->estimate.push_back({scan.stamp_us, mapper.pose()});
   run->scan_region.push_back(mapper.last_scan_region());
   run->scan_in_region.push_back(mapper.last_scan_in_region());
+  if (run->refine_trajectory) run->scan_points.AfterScan(mapper);
   if (std::getenv("DPCR_TRACE_CLOSURES") != nullptr && searching && !mapper.back_end().searching()) {
     const auto& t = mapper.back_end().last_closure();
     std::fprintf(stderr, "closure t=%.1f r%d<-r%d path %.1f win %.2f score %.2f/%.2f d(%.2f %.2f %.3f) plicp %s inl %.2f res %.3f graph %s\n",
@@ -82,8 +93,19 @@ void AddTimedScan(MapperType& mapper, const typename MapperType::ScanType& scan,
   }
 }
 
+// Each scan's final pose (see FinalizeTrajectory) from its recorded map and pose in it.
+template <class MapperType>
+dpcr::eval::Trajectory FinalPoses(const MapperType& mapper, const RunRecord& run, dpcr::eval::Trajectory online) {
+  for (std::size_t i = 0; i < online.size() && i < run.scan_region.size(); ++i) {
+    auto& e = online[i];
+    e.pose = mapper.ScanWorldPose(e.stamp_us, run.scan_region[i], run.scan_in_region[i], e.pose);
+  }
+  return online;
+}
+
 // At the end of a run: each scan's pose becomes its map's final anchor times its pose in the map
-// (the globally consistent trajectory, as the maps are); scans in no map keep their online pose;
+// (the globally consistent trajectory, as the maps are), that pose registered again in the finished
+// map unless run->refine_trajectory is off (trajectory_refinement.hpp); scans in no map keep their online pose;
 // the start and the scans before it follow the start placed in the finished first map
 // (Mapper::RefineStart, done here first) or else the refined start heading (Mapper::ScanWorldPose).
 template <class MapperType>
@@ -97,10 +119,13 @@ void FinalizeTrajectory(MapperType& mapper, RunRecord* run) {
     const auto& e = graph.edge(i);
     run->final_edges.push_back({e.from, e.to, static_cast<int>(e.kind), e.measurement});
   }
-  for (std::size_t i = 0; i < run->estimate.size() && i < run->scan_region.size(); ++i) {
-    auto& e = run->estimate[i];
-    e.pose = mapper.ScanWorldPose(e.stamp_us, run->scan_region[i], run->scan_in_region[i], e.pose);
+  const dpcr::eval::Trajectory online = run->estimate;
+  if (run->refine_trajectory) {
+    if (run->relations != nullptr) run->unrefined = FinalPoses(mapper, *run, online);
+    run->refinement = RefineTrajectory(mapper, run->scan_points, run->scan_region, &run->scan_in_region);
+    run->scan_points.Clear();
   }
+  run->estimate = FinalPoses(mapper, *run, online);
 }
 
 // Writes the files (regions.tsv and graph.tsv too when run.write_regions); returns metrics.json's
