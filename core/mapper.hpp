@@ -92,6 +92,12 @@ class Mapper {
   const BackEnd& back_end() const { return front_end_.back_end(); }
   // The anchor of regional map i (the back end moves it).
   Pose2 region_anchor(int i) const { return front_end_.region(i).anchor; }
+  // The centre of regional map i's box, in the world (its anchor now times the centre in its frame).
+  Point2 region_centre(int i) const {
+    const CellBox b = region_grids_[i].box();
+    const float res = region_grids_[i].resolution_m();
+    return region_anchor(i).Apply(Point2{0.5f * res * static_cast<float>(b.min.x + b.max.x), 0.5f * res * static_cast<float>(b.min.y + b.max.y)});
+  }
   // Where the last scan went (FrontEnd::last_scan_region): a trajectory kept as (map, pose in
   // the map) follows every later optimisation.
   int last_scan_region() const { return front_end_.last_scan_region(); }
@@ -110,7 +116,7 @@ class Mapper {
   // each scan's returns recorded as it is mapped, registered again at the end in its finished map.
   void RecordScanPoints(Span<Point2> buffer) { front_end_.RecordScanPoints(buffer); }
   std::size_t recorded_points() const { return front_end_.recorded_points(); }
-  bool BeginMapRegistration(int region) { return front_end_.BeginMapRegistration(region); }
+  bool BeginMapRegistration(int region, int other = -1) { return front_end_.BeginMapRegistration(region, other); }
   RegistrationResult RegisterInMap(Span<const Point2> robot_points, const Pose2& in_region, int max_iterations) {
     return front_end_.RegisterInMap(robot_points, in_region, max_iterations);
   }

@@ -973,11 +973,11 @@ void FrontEnd::KeepScanPoints(std::int64_t stamp_us, bool start_scan, std::size_
   for (std::size_t i = 0; i < recorded_points_; ++i) s_.recorded[i] = s_.hits[i];
 }
 
-bool FrontEnd::BeginMapRegistration(int region) {
-  if (region < 0 || region >= regions_.size()) return false;
+bool FrontEnd::BeginMapRegistration(int region, int other) {
+  if (region < 0 || region >= regions_.size() || other < -1 || other >= regions_.size() || other == region) return false;
   if (back_end_.searching()) back_end_.CancelLoopClosure();  // the search grid shares the reference's table
-  const int maps[2] = {region, -1};
-  BuildRegionReference(maps, 1);
+  const int maps[2] = {region, other};
+  BuildRegionReference(maps, other >= 0 ? 2 : 1);
   InvalidateRegionReference();  // not the pair the second registration expects
   return true;
 }

@@ -140,11 +140,12 @@ class FrontEnd {
   // one held back by the fixed-lag de-skew, one without returns, or a bad stamp).
   void RecordScanPoints(Span<Point2> buffer) { s_.recorded = buffer; }
   std::size_t recorded_points() const { return recorded_points_; }
-  // At the end of a run: BeginMapRegistration builds the reference of map `region` as it is now
-  // (false: no such map), cancelling a loop-closure search in progress; then each RegisterInMap
-  // registers recorded points in that map from their pose in it, `in_region`, with the first
-  // registration's prior and acceptance and at most `max_iterations` steps.
-  bool BeginMapRegistration(int region);
+  // At the end of a run: BeginMapRegistration builds one reference of map `region` as it is now and,
+  // unless `other` is -1, map `other` placed by the two anchors (false: no such map), cancelling a
+  // loop-closure search in progress; then each RegisterInMap registers recorded points from their
+  // pose in `region`'s frame, `in_region`, with the first registration's prior and acceptance and at
+  // most `max_iterations` steps.
+  bool BeginMapRegistration(int region, int other = -1);
   RegistrationResult RegisterInMap(Span<const Point2> robot_points, const Pose2& in_region, int max_iterations);
 
   // Loading a saved map (core/persistence/map_reader.hpp; front_end_restore.cpp), after Init:

@@ -6,8 +6,10 @@
 // "The trajectory registered again in the finished maps"). Registered again against the finished
 // map, which holds every visit, each scan lands where that map places it. The robot cannot do this:
 // it keeps no scans. The host apps keep each scan's returns as the mapper placed them (in the robot
-// frame, de-skewed: Mapper::RecordScanPoints) and register them once more at the end, map by map,
-// from the pose the run gave them, with the run's own first-registration prior and acceptance.
+// frame, de-skewed: Mapper::RecordScanPoints) and register them once more at the end, from the pose
+// the run gave them, with the run's own first-registration prior and acceptance, against their own
+// map and the map next to them (the other map whose centre is nearest): near a border the next
+// map's walls place a scan too, as the run's second registration uses the map the robot came from.
 // The maps are not touched: map.pgm is the same with or without it.
 //
 // Kept where the run placed them: the run's first recorded scan (the start: one registration's
@@ -88,6 +90,23 @@ class ScanPointRecord {
   std::size_t not_stored_ = 0;
 };
 
+// The map other than `own` whose centre is nearest to `robot` (-1: none).
+template <class MapperType>
+int NearestOtherMap(const MapperType& mapper, int own, const Pose2& robot) {
+  int best = -1;
+  float best_d = 0.0f;
+  for (int r = 0; r < mapper.region_count(); ++r) {
+    if (r == own) continue;
+    const Point2 c = mapper.region_centre(r);
+    const float d = std::hypot(c.x - robot.x, c.y - robot.y);
+    if (best < 0 || d < best_d) {
+      best = r;
+      best_d = d;
+    }
+  }
+  return best;
+}
+
 // Each recorded scan i in map region[i] gets in_region[i] replaced by its pose in that map as the
 // map is now (see the file comment for those kept). Call at the end of the run, once the back end
 // has done its work: it builds each map's reference in the mapper's storage.
@@ -102,17 +121,22 @@ RefinementStats RefineTrajectory(MapperType& mapper, const ScanPointRecord& reco
   const std::size_t n = record.scans() < region.size() ? record.scans() : region.size();
   std::size_t start = 0;
   while (start < n && record.points(start) == 0) ++start;
-  // Map by map: one reference build each.
-  std::vector<std::vector<std::size_t>> by_map(static_cast<std::size_t>(mapper.region_count()));
+  // Grouped by reference: its own map and the other map whose centre is nearest to the scan, one
+  // reference build per pair (two maps: the run's own second registration uses two).
+  const int maps = mapper.region_count();
+  std::vector<std::vector<std::size_t>> by_pair(static_cast<std::size_t>(maps) * static_cast<std::size_t>(maps + 1));
   for (std::size_t i = 0; i < n; ++i) {
     if (record.points(i) == 0) continue;
     ++stats.recorded;
-    if (i != start && region[i] >= 0 && region[i] < mapper.region_count()) by_map[static_cast<std::size_t>(region[i])].push_back(i);
+    if (i == start || region[i] < 0 || region[i] >= maps) continue;
+    const int next = NearestOtherMap(mapper, region[i], mapper.region_anchor(region[i]) * (*in_region)[i]);
+    by_pair[static_cast<std::size_t>(region[i] * (maps + 1) + (next >= 0 ? next : maps))].push_back(i);
   }
   std::vector<Point2> points;
-  for (std::size_t map = 0; map < by_map.size(); ++map) {
-    if (by_map[map].empty() || !mapper.BeginMapRegistration(static_cast<int>(map))) continue;
-    for (const std::size_t i : by_map[map]) {
+  for (std::size_t key = 0; key < by_pair.size(); ++key) {
+    const int own = static_cast<int>(key) / (maps + 1), next = static_cast<int>(key) % (maps + 1);
+    if (by_pair[key].empty() || !mapper.BeginMapRegistration(own, next < maps ? next : -1)) continue;
+    for (const std::size_t i : by_pair[key]) {
       Pose2& pose = (*in_region)[i];
       record.Scan(i, &points);
       const RegistrationResult r = mapper.RegisterInMap(Span<const Point2>(points.data(), points.size()), pose, config.max_iterations);

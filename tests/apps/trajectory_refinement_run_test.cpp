@@ -108,4 +108,10 @@ TEST_CASE("The start and a scan displaced past the bounds keep the pose they wer
   still.max_turn_rad = 0.0f;
   const dpcr::output::RefinementStats none = dpcr::output::RefineTrajectory(*run.mapper, run.record, run.region, &kept, still);
   CHECK(none.registered <= none.recorded / 100);
+  // A reference of no map, or of one map twice, is refused.
+  CHECK_FALSE(run.mapper->BeginMapRegistration(-1));
+  CHECK_FALSE(run.mapper->BeginMapRegistration(run.mapper->region_count()));
+  CHECK_FALSE(run.mapper->BeginMapRegistration(0, 0));
+  CHECK_FALSE(run.mapper->BeginMapRegistration(0, run.mapper->region_count()));
+  CHECK(run.mapper->BeginMapRegistration(0, 1));
 }
