@@ -124,6 +124,7 @@ void FinalizeTrajectory(MapperType& mapper, RunRecord* run) {
     if (run->relations != nullptr) run->unrefined = FinalPoses(mapper, *run, online);
     run->refinement = RefineTrajectory(mapper, run->scan_points, run->scan_region, &run->scan_in_region);
     run->scan_points.Clear();
+    mapper.RecordScanPoints(dpcr::Span<dpcr::Point2>());  // the buffer goes with the run record
   }
   run->estimate = FinalPoses(mapper, *run, online);
 }
