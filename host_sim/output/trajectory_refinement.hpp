@@ -72,7 +72,7 @@ class ScanPointRecord {
   std::size_t points(std::size_t scan) const { return End(scan) - begins_[scan]; }
   // Scan i's points into `out` (resized).
   void Scan(std::size_t i, std::vector<Point2>* out) const;
-  std::size_t bytes() const { return blocks_.size() * kBlock * 2 * sizeof(std::int16_t) + begins_.size() * sizeof(std::uint64_t); }
+  std::size_t bytes() const { return blocks_.size() * kBlock * 2 * sizeof(std::int16_t) + begins_.size() * sizeof(std::size_t); }
   std::size_t points_not_stored() const { return not_stored_; }
   void Clear() {
     blocks_ = {};
@@ -85,7 +85,7 @@ class ScanPointRecord {
   std::size_t End(std::size_t scan) const { return scan + 1 < begins_.size() ? begins_[scan + 1] : size_; }
   std::vector<Point2> buffer_;  // the mapper writes each scan's returns here
   std::vector<std::vector<std::int16_t>> blocks_;  // x, y in mm, kBlock points each
-  std::vector<std::uint64_t> begins_;  // each scan's first point
+  std::vector<std::size_t> begins_;  // each scan's first point
   std::size_t size_ = 0;
   std::size_t not_stored_ = 0;
 };
