@@ -32,9 +32,9 @@
 namespace dpcr::output {
 
 struct RefinementConfig {
-  // Gauss-Newton steps from the run's pose. The run's pose is a few millimetres and a tenth of a
-  // degree from the finished map's: on intel.clf three steps gave the same trajectory to 0.1 mm of
-  // mean relation error as thirty, at 0.13 s instead of 0.19 s for 13 631 scans.
+  // Gauss-Newton steps from the run's pose, which is a few millimetres and a tenth of a degree from
+  // the finished map's: on intel.clf (own map alone) 1 / 2 / 3 / 30 steps gave 0.0176 / 0.0175 /
+  // 0.0176 / 0.0177 m mean relation error, at 0.05 / 0.09 / 0.13 / 0.19 s for 13 631 scans.
   int max_iterations = 2;
   // A registration that moves a scan farther than this from where the run placed it has matched
   // another wall (a corridor's next door): the scan keeps its run pose.
