@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "host_sim/output/map_files.hpp"
@@ -119,14 +120,13 @@ void FinalizeTrajectory(MapperType& mapper, RunRecord* run) {
     const auto& e = graph.edge(i);
     run->final_edges.push_back({e.from, e.to, static_cast<int>(e.kind), e.measurement});
   }
-  const dpcr::eval::Trajectory online = run->estimate;
   if (run->refine_trajectory) {
-    if (run->relations != nullptr) run->unrefined = FinalPoses(mapper, *run, online);
+    if (run->relations != nullptr) run->unrefined = FinalPoses(mapper, *run, run->estimate);
     run->refinement = RefineTrajectory(mapper, run->scan_points, run->scan_region, &run->scan_in_region);
     run->scan_points.Clear();
     mapper.RecordScanPoints(dpcr::Span<dpcr::Point2>());  // the buffer goes with the run record
   }
-  run->estimate = FinalPoses(mapper, *run, online);
+  run->estimate = FinalPoses(mapper, *run, std::move(run->estimate));
 }
 
 // Writes the files (regions.tsv and graph.tsv too when run.write_regions); returns metrics.json's

@@ -18,10 +18,12 @@
 // farther than a scan's own noise explains (RefinementConfig: then it matched another wall).
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/base/span.hpp"
@@ -121,34 +123,39 @@ RefinementStats RefineTrajectory(MapperType& mapper, const ScanPointRecord& reco
   const std::size_t n = record.scans() < region.size() ? record.scans() : region.size();
   std::size_t start = 0;
   while (start < n && record.points(start) == 0) ++start;
-  // Grouped by reference: its own map and the other map whose centre is nearest to the scan, one
-  // reference build per pair (two maps: the run's own second registration uses two).
-  const int maps = mapper.region_count();
-  std::vector<std::vector<std::size_t>> by_pair(static_cast<std::size_t>(maps) * static_cast<std::size_t>(maps + 1));
+  // Each scan's reference: its own map and the other map whose centre is nearest to it (two maps,
+  // as the run's own second registration uses). Sorted by that pair: one reference build each.
+  const std::size_t maps = static_cast<std::size_t>(mapper.region_count());
+  std::vector<std::pair<std::size_t, std::size_t>> jobs;  // (own * (maps + 1) + next, scan); next = maps: none
   for (std::size_t i = 0; i < n; ++i) {
     if (record.points(i) == 0) continue;
     ++stats.recorded;
-    if (i == start || region[i] < 0 || region[i] >= maps) continue;
+    if (i == start || region[i] < 0 || static_cast<std::size_t>(region[i]) >= maps) continue;
     const int next = NearestOtherMap(mapper, region[i], mapper.region_anchor(region[i]) * (*in_region)[i]);
-    by_pair[static_cast<std::size_t>(region[i] * (maps + 1) + (next >= 0 ? next : maps))].push_back(i);
+    jobs.emplace_back(static_cast<std::size_t>(region[i]) * (maps + 1) + (next >= 0 ? static_cast<std::size_t>(next) : maps), i);
   }
+  std::stable_sort(jobs.begin(), jobs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<Point2> points;
-  for (std::size_t key = 0; key < by_pair.size(); ++key) {
-    const int own = static_cast<int>(key) / (maps + 1), next = static_cast<int>(key) % (maps + 1);
-    if (by_pair[key].empty() || !mapper.BeginMapRegistration(own, next < maps ? next : -1)) continue;
-    for (const std::size_t i : by_pair[key]) {
-      Pose2& pose = (*in_region)[i];
-      record.Scan(i, &points);
-      const RegistrationResult r = mapper.RegisterInMap(Span<const Point2>(points.data(), points.size()), pose, config.max_iterations);
-      if (r.verdict != Status::kOk) {
-        ++stats.refused;
-      } else if (std::hypot(r.pose.x - pose.x, r.pose.y - pose.y) > config.max_move_m ||
-                 std::abs(NormalizeAngle(r.pose.theta - pose.theta)) > config.max_turn_rad) {
-        ++stats.too_far;
-      } else {
-        pose = r.pose;
-        ++stats.registered;
-      }
+  bool built = false;
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    const std::size_t key = jobs[k].first;
+    if (k == 0 || key != jobs[k - 1].first) {
+      const std::size_t own = key / (maps + 1), next = key % (maps + 1);
+      built = mapper.BeginMapRegistration(static_cast<int>(own), next < maps ? static_cast<int>(next) : -1);
+    }
+    if (!built) continue;
+    const std::size_t i = jobs[k].second;
+    Pose2& pose = (*in_region)[i];
+    record.Scan(i, &points);
+    const RegistrationResult r = mapper.RegisterInMap(Span<const Point2>(points.data(), points.size()), pose, config.max_iterations);
+    if (r.verdict != Status::kOk) {
+      ++stats.refused;
+    } else if (std::hypot(r.pose.x - pose.x, r.pose.y - pose.y) > config.max_move_m ||
+               std::abs(NormalizeAngle(r.pose.theta - pose.theta)) > config.max_turn_rad) {
+      ++stats.too_far;
+    } else {
+      pose = r.pose;
+      ++stats.registered;
     }
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
