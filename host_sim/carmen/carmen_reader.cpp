@@ -23,7 +23,9 @@ bool IsSpace(char c) {
 // Clinger's fast path: a plain decimal of at most 15 digits ("1.23", "-0.004", "17") is an exact
 // integer over an exact power of ten, and one IEEE division rounds the quotient correctly: the
 // double strtod and from_chars give, at a fraction of their cost (parsing was ~10 % of a replay).
-bool ParseShortDecimal(const char* p, const char* last, double* value) {
+// Read from `p` up to the next space or `last`: where the word ends, or nullptr when it is not such
+// a decimal (the caller then parses the whole word). Parsed as it is read: one pass over a line.
+const char* ReadShortDecimal(const char* p, const char* last, double* value) {
   const bool negative = p < last && *p == '-';
   if (p < last && (*p == '-' || *p == '+')) ++p;
   static constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
@@ -36,52 +38,56 @@ bool ParseShortDecimal(const char* p, const char* last, double* value) {
       mantissa = mantissa * 10u + digit;
     } else if (*p == '.' && point == nullptr) {
       point = p;
+    } else if (IsSpace(*p)) {
+      break;
     } else {
-      return false;
+      return nullptr;
     }
   }
   // Every character is a digit but the point; more than 15 digits could overflow the mantissa
   // (it stops being exact past 2^53 anyway).
-  const long digits = (last - first_digit) - (point != nullptr ? 1 : 0);
-  if (digits == 0 || digits > 15) return false;
-  const long decimals = point != nullptr ? last - point - 1 : 0;
+  const long digits = (p - first_digit) - (point != nullptr ? 1 : 0);
+  if (digits == 0 || digits > 15) return nullptr;
+  const long decimals = point != nullptr ? p - point - 1 : 0;
   const double v = static_cast<double>(mantissa) / kPow10[decimals];
   *value = negative ? -v : v;
-  return true;
+  return p;
 }
 
-// The whitespace-separated words of one line, as views into it (no copies), parsed on demand.
+// The whitespace-separated words of one line, read in order as views into it (no copies).
 class Tokens {
  public:
-  Tokens(const std::string& text, long line, std::vector<std::string_view>* storage) : tokens_(*storage), line_(line) {
-    tokens_.clear();
-    const char* p = text.data();
-    const char* const end = p + text.size();
-    while (p < end) {
-      while (p < end && IsSpace(*p)) ++p;
-      const char* const word = p;
-      while (p < end && !IsSpace(*p)) ++p;
-      if (p > word) tokens_.emplace_back(word, static_cast<std::size_t>(p - word));
-    }
+  Tokens(const std::string& text, long line) : p_(text.data()), end_(text.data() + text.size()), line_(line) {
+    kind_ = NextWord();
   }
-  std::size_t size() const { return tokens_.size(); }
-  std::string_view Kind() const { return tokens_.empty() ? std::string_view() : tokens_[0]; }
+  std::string_view Kind() const { return kind_; }
   std::string_view Word(const char* what) {
-    if (next_ >= tokens_.size()) throw CarmenError(line_, std::string("line ends before ") + what);
-    return tokens_[next_++];
+    const std::string_view w = NextWord();
+    if (w.empty()) throw CarmenError(line_, std::string("line ends before ") + what);
+    last_ = w;
+    return w;
   }
   // The line must end here: words left over mean its count or its fields were wrong (read on,
   // readings would have been taken for the pose and the time stamp).
   void End(const char* last_field) {
-    if (next_ < tokens_.size()) {
-      throw CarmenError(line_, std::to_string(tokens_.size() - next_) + " more words after the " + last_field +
+    std::size_t left = 0;
+    while (!NextWord().empty()) ++left;
+    if (left > 0) {
+      throw CarmenError(line_, std::to_string(left) + " more words after the " + last_field +
                                    " (a wrong number of readings?)");
     }
   }
   // The whole word as a finite decimal number (correctly rounded, as strtod).
   double Number(const char* what) {
-    const std::string_view w = Word(what);
+    SkipSpaces();
     double v = 0.0;
+    const char* const word = p_;
+    if (const char* const stop = ReadShortDecimal(word, end_, &v)) {  // the usual case, in one pass
+      last_ = std::string_view(word, static_cast<std::size_t>(stop - word));
+      p_ = stop;
+      return v;
+    }
+    const std::string_view w = Word(what);
     if (!ParseNumber(w, &v)) throw CarmenError(line_, std::string("bad ") + what + " '" + std::string(w) + "'");
     return v;
   }
@@ -89,14 +95,14 @@ class Tokens {
   float Float(const char* what) {
     const double v = Number(what);
     if (std::fabs(v) > static_cast<double>(std::numeric_limits<float>::max())) {
-      throw CarmenError(line_, std::string("bad ") + what + " '" + std::string(tokens_[next_ - 1]) + "': out of range");
+      throw CarmenError(line_, std::string("bad ") + what + " '" + std::string(last_) + "': out of range");
     }
     return static_cast<float>(v);
   }
   long Count(const char* what, long max) {
     const double v = Number(what);
     if (v < 0 || v > static_cast<double>(max) || v != std::floor(v)) {
-      throw CarmenError(line_, std::string("bad ") + what + " " + std::string(tokens_[next_ - 1]));
+      throw CarmenError(line_, std::string("bad ") + what + " " + std::string(last_));
     }
     return static_cast<long>(v);
   }
@@ -109,9 +115,21 @@ class Tokens {
   long line() const { return line_; }
 
  private:
-  std::vector<std::string_view>& tokens_;
-  std::size_t next_ = 1;  // token 0 is the message name
+  void SkipSpaces() {
+    while (p_ < end_ && IsSpace(*p_)) ++p_;
+  }
+  // The next word; empty at the line's end.
+  std::string_view NextWord() {
+    SkipSpaces();
+    const char* const word = p_;
+    while (p_ < end_ && !IsSpace(*p_)) ++p_;
+    return std::string_view(word, static_cast<std::size_t>(p_ - word));
+  }
+  const char* p_;
+  const char* const end_;
   long line_;
+  std::string_view kind_;  // the first word: the message name
+  std::string_view last_;  // the last word read, for messages
 };
 
 dpcr::Pose2 ReadPose(Tokens& t, const char* what) {
@@ -185,7 +203,7 @@ bool CarmenReader::Next(Record* out) {
       ++counters_.comments;
       continue;
     }
-    Tokens t(text, line, &tokens_);
+    Tokens t(text, line);
     const std::string_view kind = t.Kind();
     if (kind == "FLASER" || kind == "ROBOTLASER1") {
       out->kind = Record::Kind::kLaser;
@@ -235,7 +253,7 @@ bool CarmenReader::Next(Record* out) {
 bool ParseNumber(std::string_view text, double* value) {
   const char* first = text.data();
   const char* const last = first + text.size();
-  if (ParseShortDecimal(first, last, value)) return true;
+  if (ReadShortDecimal(first, last, value) == last) return true;
   if (first < last && *first == '+') ++first;  // strtod's optional sign, which from_chars lacks
   double v = 0.0;
   const std::from_chars_result r = std::from_chars(first, last, v);

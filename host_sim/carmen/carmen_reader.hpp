@@ -72,9 +72,8 @@ class CarmenReader {
   ReaderCounters counters_;
   float front_laser_offset_m_ = 0.0f;
   std::int64_t last_laser_stamp_us_ = INT64_MIN;
-  // Reused from line to line (parsing allocates nothing once they have grown).
+  // Reused from line to line (parsing allocates nothing once it has grown).
   std::string line_;
-  std::vector<std::string_view> tokens_;
 };
 
 // A whole word as a finite decimal number: the double strtod gives; false on anything else.

@@ -46,6 +46,28 @@ TEST_CASE("FLASER, ODOM, PARAM and comment lines are read in file order") {
   REQUIRE(reader.counters().comments == 1);
 }
 
+TEST_CASE("Words a plain decimal does not cover are read whole: exponents and tabs mid-line") {
+  // The reader parses plain decimals as it meets them; anything else is read as a whole word.
+  std::istringstream log("FLASER\t3 1e0 2.5\t+3 0 0 0 0 0 0 99.000000 nohost 0.7\r\n");
+  CarmenReader reader(log);
+  Record r;
+  REQUIRE(reader.Next(&r));
+  REQUIRE(r.laser.ranges_m.size() == 3);
+  REQUIRE(r.laser.ranges_m[0] == 1.0f);
+  REQUIRE(r.laser.ranges_m[1] == 2.5f);
+  REQUIRE(r.laser.ranges_m[2] == 3.0f);
+  REQUIRE(r.laser.stamp_us == 99000000LL);
+  // A number run into letters is named whole in the error.
+  std::istringstream bad("FLASER 2 1 1.5x 0 0 0 0 0 0 1.0 h 1\n");
+  CarmenReader bad_reader(bad);
+  try {
+    bad_reader.Next(&r);
+    FAIL("no error");
+  } catch (const CarmenError& e) {
+    REQUIRE(std::string(e.what()) == "line 1: bad range reading '1.5x'");
+  }
+}
+
 TEST_CASE("ROBOTLASER1 lines carry their own angles and range") {
   std::istringstream log(
       "ROBOTLASER1 0 -1.5 3.0 1.0 30.0 0.01 0 4 1 2 3 4 0 0.5 0.6 0.7 0.1 0.2 0.3 0 0 0 0 0 5.000000 host 5.1\n");
