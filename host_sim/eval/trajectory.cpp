@@ -1,5 +1,6 @@
 #include "host_sim/eval/trajectory.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -8,13 +9,33 @@
 
 namespace dpcr::eval {
 
+namespace {
+
+// `v` in fixed notation with `decimals` digits, then `tail`: the text printf's "%.Nf" gives (both
+// round the exact binary value correctly), at a fraction of printf's cost (a long trajectory's
+// file took ~1 % of a replay).
+char* PutFixed(char* at, char* end, double v, int decimals, char tail) {
+  const std::to_chars_result r = std::to_chars(at, end, v, std::chars_format::fixed, decimals);
+  *r.ptr = tail;
+  return r.ptr + 1;
+}
+
+}  // namespace
+
 void WriteTum(std::ostream& out, const Trajectory& trajectory) {
-  char buf[160];
+  char buf[192];  // a finite float in fixed notation has at most 39 integer digits
+  char* const end = buf + sizeof(buf);
   for (const StampedPose& p : trajectory) {
     const double half = 0.5 * static_cast<double>(p.pose.theta);
-    std::snprintf(buf, sizeof(buf), " %.6f %.6f 0 0 0 %.9f %.9f\n", static_cast<double>(p.pose.x),
-                  static_cast<double>(p.pose.y), std::sin(half), std::cos(half));
-    out << FormatStamp(p.stamp_us) << buf;
+    char* at = buf;
+    *at++ = ' ';
+    at = PutFixed(at, end, static_cast<double>(p.pose.x), 6, ' ');
+    at = PutFixed(at, end, static_cast<double>(p.pose.y), 6, ' ');
+    for (const char c : {'0', ' ', '0', ' ', '0', ' '}) *at++ = c;
+    at = PutFixed(at, end, std::sin(half), 9, ' ');
+    at = PutFixed(at, end, std::cos(half), 9, '\n');
+    out << FormatStamp(p.stamp_us);
+    out.write(buf, at - buf);
   }
 }
 

@@ -54,6 +54,10 @@ class Canvas {
     }
   }
   void Save(const std::string& path) {
+    // One filter (Paeth) rather than all five tried per row, and stb's shortest match search: on
+    // intel.clf's map 207 -> 155 M instructions for a file 3.5 % larger (44.5 -> 46.1 kB).
+    stbi_write_force_png_filter = 4;
+    stbi_write_png_compression_level = 5;
     if (stbi_write_png(path.c_str(), w_, h_, 3, pixels_.data(), w_ * 3) == 0) {
       throw std::runtime_error(path + ": cannot write PNG: " + std::strerror(errno));
     }
