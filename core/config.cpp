@@ -108,7 +108,7 @@ bool FrontEndOk(const FrontEndConfig& f, const GridConfig& g) {
                        In(f.lost_after_rejections, 1, kMaxCount) && In(f.lidar_only_lost_after_second_rejections, 0, kMaxCount) &&
                        In(f.submap_restart_after_rejections, 1, kMaxCount) &&
                        In(f.min_start_hits, 0, kMaxCount) && In(f.redeskew_min_m, 0.0f, 1.0f) &&
-                       In(f.sparse_scan_share, 0.0f, 1.0f) && In(f.sparse_residual_noise_factor, 0.0f, 10.0f) &&
+                       In(f.sparse_scan_share, 0.0f, 1.0f) && In(f.sparse_reference_full_share, 0.0f, 1.0f) && In(f.sparse_residual_noise_factor, 0.0f, 10.0f) &&
                        In(f.redeskew_min_rad, 0.0f, kPi) && In(f.odometry_doubt_m, 0.0f, 10.0f) &&
                        In(f.odometry_doubt_rad, 0.0f, kPi) &&
                        In(f.uncertain_turn_rad, 0.0f, kPi);

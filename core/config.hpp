@@ -333,6 +333,14 @@ struct FrontEndConfig {
   // Cells that range noise touches only now and then stay out, so lines do not tilt with them.
   ReferenceConfig submap_reference = ReferenceWithThreshold(2000);
   ReferenceConfig region_reference = ReferenceWithThreshold(3000);
+  // A lidar returning fewer than this share of the readings that point at something in range
+  // (core/front_end/return_share.hpp) has the submap's obstacle threshold scaled by its share over
+  // this one: its walls collect that much fewer hits. The lidars the threshold was set on return
+  // more (the LD06 about 95 %, the XV-11 model 65 %, the public logs' SICKs 96-99 %) and are left
+  // as they were; 0.6 also touched the XV-11 model when its share dipped (0.5 and 0.6 measured).
+  // XV-11 with a gyro alone and 40 % of its readings at 3.5-5 Hz, apartment seeds 1-40: runs over
+  // 0.2 m 15 -> 5 (docs/front-end-accuracy.md, "Sparse returns, sparse walls"). 0 = off.
+  float sparse_reference_full_share = 0.5f;
   // A new map's grid (the world frame) is turned by grid_turn_rad against the robot's first pose
   // when the first scan not skipped (after an XV-11's spin-up revolution) has its walls within
   // grid_turn_band_rad of the grid's axes, as they do when

@@ -6,6 +6,7 @@
 #include "core/front_end/acceleration_limit.hpp"
 #include "core/front_end/forward_step.hpp"
 #include "core/front_end/reference_for_noise.hpp"
+#include "core/front_end/return_share.hpp"
 #include "core/geometry/wall_direction.hpp"
 #include "core/grid/ray_caster.hpp"
 #include "core/registration/pivot_frame.hpp"
@@ -255,6 +256,7 @@ Status FrontEnd::AddScan(Span<const Beam> beams, std::int64_t stamp_us) {
   ProjectedScan projected = ProjectScan(beams, config_.lidar, motion, s_.hits, s_.free_ends);
   counters_.beams_invalid += static_cast<std::uint32_t>(projected.invalid);
   counters_.beams_isolated += static_cast<std::uint32_t>(projected.isolated);
+  fe_counters_.return_share = UpdateReturnShare(fe_counters_.return_share, projected);
   if (SkipScan(projected, predicted)) return Status::kNotEnoughData;
   // The first scan not skipped may turn the grid (not an XV-11's spin-up; ScanWorldPose turns that).
   const bool may_turn_grid = std::exchange(grid_turn_pending_, false);
@@ -612,6 +614,9 @@ void FrontEnd::RebuildSubmapReferenceIfDue() {
     // (XV-11, gyro only, seeds 1-10: 0.049 m with the clean tolerance, 0.227 m with the wider one).
     const bool wheels = WheelsMeasured();
     ReferenceConfig reference = wheels ? ReferenceForNoise(f.submap_reference, config_) : f.submap_reference;
+    // A lidar that loses many of its readings gives its walls fewer hits (return_share.hpp).
+    reference = ReferenceForReturnShare(reference, fe_counters_.return_share, f.sparse_reference_full_share);
+    if (reference.obstacle_threshold < f.submap_reference.obstacle_threshold) ++fe_counters_.submap_sparse_builds;
     const int reachable = (s_.submap->size() + 1) / 2 * config_.grid.hit_delta - 1;
     if (reachable < reference.obstacle_threshold) reference.obstacle_threshold = static_cast<std::int16_t>(reachable);
     // Lowered to one hit only behind wheels: without them a weak match more likely means a

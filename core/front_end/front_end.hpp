@@ -48,6 +48,11 @@ struct FrontEndCounters {
   std::uint32_t region_line_builds = 0;
   std::uint32_t reference_cells_dropped = 0;  // obstacle cells past a reference's capacity
   std::uint32_t submap_early_builds = 0;      // submap references rebuilt after a weak match
+  // Submap references built with the threshold lowered for a lidar that returns few of its
+  // readings (FrontEndConfig::sparse_reference_full_share), and that share as it stands
+  // (UpdateReturnShare: the running share of returns where the lidar sees anything).
+  std::uint32_t submap_sparse_builds = 0;
+  float return_share = 1.0f;
   std::uint32_t redeskews = 0;     // scans projected and registered again with the motion found (no wheels)
   std::uint32_t bent_tracked = 0;  // bent scans tracked past the residual bound (FrontEnd::TrackBent)
   // First registrations rejected from the wheels' prediction that were tried again from the

@@ -43,7 +43,12 @@ ProjectedScan Project(Beams beams, const LidarConfig& lidar, const ScanMotion& m
   // Beams of one packet share a motion estimate closely; cache the last offset's correction.
   std::int32_t cached_offset = 0;
   Pose2 sensor = lidar.mount;
+  std::size_t hits_before_sector = 0;
   for (std::size_t i = 0; i < beams.size(); ++i) {
+    if (i % kReturnSectorBeams == 0 && i > 0) {
+      if (out.hits > hits_before_sector) out.beams_in_returning_sectors += kReturnSectorBeams;
+      hits_before_sector = out.hits;
+    }
     const Beam b = BeamAt(beams, i);
     if (!PlausibleBeam(b)) {
       ++out.invalid;
@@ -65,6 +70,7 @@ ProjectedScan Project(Beams beams, const LidarConfig& lidar, const ScanMotion& m
       ++out.invalid;
     }
   }
+  if (out.hits > hits_before_sector) out.beams_in_returning_sectors += beams.size() - (beams.size() - 1) / kReturnSectorBeams * kReturnSectorBeams;
   // A lidar that declares its range noise has its returns on straight walls moved onto them.
   if (lidar.range_noise_m > 0.0f && beams.size() > 0) {
     ReturnSmoothingConfig smoothing;

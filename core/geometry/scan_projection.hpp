@@ -17,7 +17,14 @@ struct ProjectedScan {
   std::size_t free_ends = 0;  // no-return beams cleared up to no_return_free_m
   std::size_t invalid = 0;    // beams with neither
   std::size_t isolated = 0;   // returns dropped as junk (LidarConfig::drop_isolated_returns)
+  // Beams in the revolution's sectors of kReturnSectorBeams neighbours that hold a return: the
+  // beams that point at something within range. A sector looking down a corridor past the range
+  // holds none, so hits / these is the share of readings the lidar loses on walls it does see
+  // (core/front_end/return_share.hpp).
+  std::size_t beams_in_returning_sectors = 0;
 };
+
+constexpr std::size_t kReturnSectorBeams = 8;
 
 // Points are expressed in the robot frame at the scan stamp (the one `motion` was made for).
 ProjectedScan ProjectScan(Span<const Beam> beams, const LidarConfig& lidar, const ScanMotion& motion,

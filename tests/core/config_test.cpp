@@ -167,6 +167,7 @@ std::vector<BadField> BadFields() {
       INT_FIELD(front_end.second_registration_max_points, kCount),  // 0 divided by zero in SubmapTarget
       INT_FIELD(front_end.min_start_hits, (std::vector<double>{-1.0, -2e9, 1e9})),
       FLOAT_FIELD(front_end.sparse_scan_share, (std::vector<double>{-0.1, 1.1, 1e9})),
+      FLOAT_FIELD(front_end.sparse_reference_full_share, (std::vector<double>{-0.1, 1.1, 1e9})),
       FLOAT_FIELD(front_end.sparse_residual_noise_factor, (std::vector<double>{-0.1, 10.5, 1e9})),
       FLOAT_FIELD(front_end.redeskew_min_m, kNonNegative),
       FLOAT_FIELD(front_end.redeskew_min_rad, kNonNegative),
