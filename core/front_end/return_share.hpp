@@ -4,8 +4,9 @@
 // readings (the sparsest real XV-11 recordings) gives a wall cell proportionally fewer hits, and
 // with range noise spreading them over two or three cells many of its walls never reach the
 // threshold: the reference is left with holes, registrations lean on what is left, and without
-// wheels the robot loses its way. Scaled with the share of returns, the threshold asks the same
-// of every wall a sparse lidar sees as of one a full lidar sees.
+// wheels the robot loses its way. Scaled with the share of returns below half
+// (FrontEndConfig::sparse_reference_full_share), the threshold asks of a sparser lidar's walls
+// what it asks of those of a lidar returning half its readings.
 #pragma once
 
 #include "core/geometry/scan_projection.hpp"
