@@ -19,7 +19,7 @@ struct ProjectedScan {
   std::size_t isolated = 0;   // returns dropped as junk (LidarConfig::drop_isolated_returns)
   // Beams in the revolution's sectors of kReturnSectorBeams neighbours that hold a return: the
   // beams that point at something within range. A sector looking down a corridor past the range
-  // holds none, so hits / these is the share of readings the lidar loses on walls it does see
+  // holds none, so hits / these is the share of readings the lidar returns from walls it does see
   // (core/front_end/return_share.hpp).
   std::size_t beams_in_returning_sectors = 0;
 };
