@@ -1,6 +1,7 @@
 #include "core/geometry/scan_projection.hpp"
 
 #include <cmath>
+#include <cstdint>
 
 #include "core/base/assert.hpp"
 #include "core/geometry/return_smoothing.hpp"
@@ -43,12 +44,9 @@ ProjectedScan Project(Beams beams, const LidarConfig& lidar, const ScanMotion& m
   // Beams of one packet share a motion estimate closely; cache the last offset's correction.
   std::int32_t cached_offset = 0;
   Pose2 sensor = lidar.mount;
-  std::size_t hits_before_sector = 0;
+  // The sector of the last return: a sector is counted at its first return (the last one may be short).
+  std::size_t counted_sector = SIZE_MAX;
   for (std::size_t i = 0; i < beams.size(); ++i) {
-    if (i % kReturnSectorBeams == 0 && i > 0) {
-      if (out.hits > hits_before_sector) out.beams_in_returning_sectors += kReturnSectorBeams;
-      hits_before_sector = out.hits;
-    }
     const Beam b = BeamAt(beams, i);
     if (!PlausibleBeam(b)) {
       ++out.invalid;
@@ -62,6 +60,12 @@ ProjectedScan Project(Beams beams, const LidarConfig& lidar, const ScanMotion& m
     if (valid && lidar.drop_isolated_returns && !Confirmed(beams, i, lidar)) {
       ++out.isolated;
     } else if (valid) {
+      const std::size_t sector = i / kReturnSectorBeams;
+      if (sector != counted_sector) {
+        counted_sector = sector;
+        const std::size_t first = sector * kReturnSectorBeams;
+        out.beams_in_returning_sectors += beams.size() - first < kReturnSectorBeams ? beams.size() - first : kReturnSectorBeams;
+      }
       hits_out[out.hits++] = sensor.Apply(Point2{b.range_m * std::cos(b.angle_rad), b.range_m * std::sin(b.angle_rad)});
     } else if (lidar.no_return_free_m > 0.0f && (!finite || b.range_m <= 0.0f || b.range_m > lidar.max_range_m)) {
       const float r = lidar.no_return_free_m;
@@ -70,7 +74,6 @@ ProjectedScan Project(Beams beams, const LidarConfig& lidar, const ScanMotion& m
       ++out.invalid;
     }
   }
-  if (out.hits > hits_before_sector) out.beams_in_returning_sectors += beams.size() - (beams.size() - 1) / kReturnSectorBeams * kReturnSectorBeams;
   // A lidar that declares its range noise has its returns on straight walls moved onto them.
   if (lidar.range_noise_m > 0.0f && beams.size() > 0) {
     ReturnSmoothingConfig smoothing;

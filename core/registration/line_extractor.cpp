@@ -146,10 +146,6 @@ LineFeature Merged(const LineFeature& p, const LineFeature& q) {
   return m;
 }
 
-}  // namespace
-
-namespace {
-
 // A normal's component (|v| <= 127) to the nearest integer, halves away from zero: lround's answer
 // without its call.
 std::int8_t NormalComponent(float v) { return static_cast<std::int8_t>(v + std::copysign(0.5f, v)); }
