@@ -124,7 +124,7 @@ bool FrontEndOk(const FrontEndConfig& f, const GridConfig& g) {
   const bool search = PoseSearchOk(f.search) && In(f.search_turn_rad, 0.0f, kPi) &&
                       In(f.weak_match_inlier_ratio, 0.0f, 1.0f) && f.weak_match_obstacle_threshold >= 0;
   const bool registration = search && In(f.prior_info_xy, 0.0f, kMaxInformation) && In(f.prior_info_theta, 0.0f, kMaxInformation) &&
-                            In(f.max_acceleration_mps2, 0.0f, 100.0f) &&
+                            In(f.max_acceleration_mps2, 0.0f, 100.0f) && In(f.weak_direction_information, 0.0f, kMaxInformation) &&
                             In(f.second_registration_max_points, 1, kMaxCount) && PlicpOk(f.first_registration) &&
                             PlicpOk(f.second_registration) &&
                             ReferenceOk(f.submap_reference, most_hits) &&

@@ -285,6 +285,15 @@ struct FrontEndConfig {
   // degenerate one: the office alike, the sparse gyro-alone set 8 -> 13 of 240. false: the step as
   // registered.
   bool degenerate_guess_forward = true;
+  // Without wheels, an accepted first registration keeps within max_acceleration_mps2 x interval^2
+  // of the constant velocity's guess along each direction whose information per inlier (the xy
+  // block of its Hessian) is below this (core/front_end/weak_direction_hold.hpp): there the answer
+  // is the pull of a few far returns, and taken whole it slowed the guess until the estimate
+  // stood in a lane while the robot drove on. Well-fixed registrations carry 0.12-0.22 on the
+  // apartment's XV-11 scans; weak ones 0-0.07. XV-11, apartment, 35 min, runs over 0.2 m: gyro
+  // alone, half the readings at 3.5-5 Hz, seeds 1-120 10 -> 5; lidar alone seeds 1-20 1 -> 0
+  // (docs/front-end-accuracy.md, "A lane with little hold along it"). 0: never.
+  float weak_direction_information = 0.1f;
   // Without wheels, while the heading sensor (a gyro, heading-only ticks) measures a turn faster
   // than FrontEnd::kTurnInPlaceRadS, the first registration's translation prior is as firm as the
   // wheels' (FrontEnd::PriorXyScale): a vacuum turns in place, or on a tight arc at the speed it

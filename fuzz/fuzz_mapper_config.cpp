@@ -70,7 +70,7 @@ void ForEachField(M& m, dpcr::MapperConfig& c) {
       m(f.submap_miss_range_m), m(f.region_miss_range_m), m(f.submap_refit_gate_m), m(f.submap_refit_min_points),
       m(f.region_width_m), m(f.region_hysteresis_m), m(f.region_mature_scans), m(f.reference_inner_margin_m),
       m(f.region_slow_learning_scans), m(f.region_slow_learning_rate),
-      m(f.enable_registration), m(f.lost_after_rejections), m(f.lidar_only_lost_after_second_rejections), m(f.prior_info_xy), m(f.prior_info_theta), m(f.max_acceleration_mps2), m(f.odometry_doubt_m), m(f.odometry_doubt_rad),
+      m(f.enable_registration), m(f.lost_after_rejections), m(f.lidar_only_lost_after_second_rejections), m(f.prior_info_xy), m(f.prior_info_theta), m(f.max_acceleration_mps2), m(f.weak_direction_information), m(f.odometry_doubt_m), m(f.odometry_doubt_rad),
       m(f.second_registration_max_points), m(f.min_start_hits), m(f.sparse_scan_share), m(f.sparse_reference_full_share), m(f.sparse_residual_noise_factor), m(f.redeskew_min_m), m(f.redeskew_min_rad), m(f.lidar_only_fixed_lag);
   Plicp(m, f.first_registration);
   m(f.search_on_rejection), m(f.search_turn_rad), m(f.degenerate_guess_forward), m(f.turn_holds_translation),

@@ -7,6 +7,7 @@
 #include "core/front_end/forward_step.hpp"
 #include "core/front_end/reference_for_noise.hpp"
 #include "core/front_end/return_share.hpp"
+#include "core/front_end/weak_direction_hold.hpp"
 #include "core/geometry/wall_direction.hpp"
 #include "core/grid/ray_caster.hpp"
 #include "core/registration/pivot_frame.hpp"
@@ -661,6 +662,13 @@ bool FrontEnd::RegisterScan(Span<const Beam> beams, const ScanMotion& motion, st
   if (!motion.wheels() && dt_us > 0 && !beams.empty()) r = RegisterRedeskewed(beams, motion, dt_us, sparse, projected, r);
   if (r.verdict != Status::kOk && motion.wheels() && !motion.gyro()) r = RegisterFromConstantVelocity(projected->hits, sparse, dt_us, predicted, r);
   if (r.verdict == Status::kOk && ImplausibleWithoutWheels(r.pose, predicted, motion, dt_us)) r.verdict = Status::kRejected;
+  if (r.verdict == Status::kOk && GuessHoldsWeakDirections(motion, dt_us)) {
+    const float dt_s = static_cast<float>(dt_us) * 1e-6f;
+    const float max_deviation_m = f.max_acceleration_mps2 * dt_s * dt_s;
+    if (HoldWeakDirections(r.hessian, r.inliers, predicted, f.weak_direction_information, max_deviation_m, &r.pose)) {
+      ++fe_counters_.weak_direction_holds;
+    }
+  }
   ++fe_counters_.first_registrations;
   weak_match_ = r.verdict != Status::kOk || r.inlier_ratio < f.weak_match_inlier_ratio;
   last_degenerate_ = r.verdict == Status::kOk && r.degenerate;
@@ -686,6 +694,14 @@ bool FrontEnd::ImplausibleWithoutWheels(const Pose2& registered, const Pose2& pr
   // then kept out the registrations that found it again (seed 1: 0.218 -> 1.82 m).
   const float step_m = std::hypot(registered.x - pose_.x, registered.y - pose_.y);
   return motion.gyro() && dt_us > 0 && step_m > kMaxSpeedWithoutWheelsMps * static_cast<float>(dt_us) * 1e-6f;
+}
+
+bool FrontEnd::GuessHoldsWeakDirections(const ScanMotion& motion, std::int64_t dt_us) const {
+  // As ImplausibleWithoutWheels: only while the constant velocity is held (a faded guess says
+  // nothing along the way either).
+  const FrontEndConfig& f = config_.front_end;
+  return f.weak_direction_information > 0.0f && f.max_acceleration_mps2 > 0.0f && dt_us > 0 && !WheelsTranslate(motion) &&
+         (consecutive_rejections_ == 0 || HoldsVelocity());
 }
 
 RegistrationResult FrontEnd::RegisterRedeskewed(Span<const Beam> beams, const ScanMotion& motion, std::int64_t dt_us, bool sparse,

@@ -55,6 +55,9 @@ struct FrontEndCounters {
   float return_share = 1.0f;
   std::uint32_t redeskews = 0;     // scans projected and registered again with the motion found (no wheels)
   std::uint32_t bent_tracked = 0;  // bent scans tracked past the residual bound (FrontEnd::TrackBent)
+  // Accepted first registrations moved back toward the constant velocity's guess along a direction
+  // the walls barely fix (FrontEndConfig::weak_direction_information; no wheels).
+  std::uint32_t weak_direction_holds = 0;
   // First registrations rejected from the wheels' prediction that were tried again from the
   // constant velocity's (FrontEndConfig::odometry_doubt_*), and how many of those were accepted.
   std::uint32_t odometry_doubted = 0;
@@ -226,6 +229,9 @@ class FrontEnd {
   static constexpr float kMaxSpeedWithoutWheelsMps = 0.6f;
   bool ImplausibleWithoutWheels(const Pose2& registered, const Pose2& predicted, const ScanMotion& motion,
                                 std::int64_t dt_us) const;
+  // Whether an accepted first registration keeps near the constant velocity's guess along the
+  // directions the walls barely fix (FrontEndConfig::weak_direction_information).
+  bool GuessHoldsWeakDirections(const ScanMotion& motion, std::int64_t dt_us) const;
   // Without wheels or a gyro the predicted turn is the constant velocity's guess too: a turn that
   // speeds up or slows down is not in it, and at full strength its prior held each step short of
   // the turn (XV-11 at 5 Hz, no odometry: 1-3 deg of heading lost per start or stop of a turn;

@@ -228,6 +228,7 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                     {"submap_line_builds", f.submap_line_builds}, {"region_line_builds", f.region_line_builds},
                     {"reference_cells_dropped", f.reference_cells_dropped}, {"submap_early_builds", f.submap_early_builds},
                     {"submap_sparse_builds", f.submap_sparse_builds}, {"return_share", f.return_share},
+                    {"weak_direction_holds", f.weak_direction_holds},
                     {"redeskews", f.redeskews}, {"odometry_doubted", f.odometry_doubted}, {"odometry_overruled", f.odometry_overruled}, {"odometry_stalls", f.odometry_stalls}, {"bent_tracked", f.bent_tracked}, {"lag_reregistered", f.lag_reregistered}, {"lag_bent_taken", f.lag_bent_taken}, {"searches", f.search.searches},
                     {"first_wall_direction_deg", std::isfinite(f.first_wall_direction_rad) ? nlohmann::json(f.first_wall_direction_rad * 180.0 / M_PI) : nlohmann::json()},
                     {"grid_turn_deg", f.grid_turn_rad * 180.0 / M_PI},

@@ -162,6 +162,7 @@ std::vector<BadField> BadFields() {
       FLOAT_FIELD(front_end.prior_info_xy, kNonNegative),
       FLOAT_FIELD(front_end.prior_info_theta, kNonNegative),
       FLOAT_FIELD(front_end.max_acceleration_mps2, (std::vector<double>{-1.0, kNaN, kInf, 101.0})),
+      FLOAT_FIELD(front_end.weak_direction_information, (std::vector<double>{-1.0, kNaN, kInf, 2e6})),
       FLOAT_FIELD(front_end.odometry_doubt_m, kNonNegative),
       FLOAT_FIELD(front_end.odometry_doubt_rad, (std::vector<double>{-1.0, kNaN, kInf, 4.0})),
       INT_FIELD(front_end.second_registration_max_points, kCount),  // 0 divided by zero in SubmapTarget
