@@ -290,9 +290,10 @@ struct FrontEndConfig {
   // block of its Hessian) is below this (core/front_end/weak_direction_hold.hpp): there the answer
   // is the pull of a few far returns, and taken whole it slowed the guess until the estimate
   // stood in a lane while the robot drove on. Well-fixed registrations carry 0.12-0.22 on the
-  // apartment's XV-11 scans; weak ones 0-0.07. XV-11, apartment, 35 min, runs over 0.2 m: gyro
-  // alone, half the readings at 3.5-5 Hz, seeds 1-120 10 -> 5; lidar alone seeds 1-20 1 -> 0
-  // (docs/front-end-accuracy.md, "A lane with little hold along it"). 0: never.
+  // apartment's XV-11 scans; weak ones 0-0.07. XV-11, runs over 0.2 m: gyro alone, half the
+  // readings at 3.5-5 Hz, apartment 35 min, seeds 1-120 10 -> 7; office 15 min, seeds 1-40 6 -> 1;
+  // lidar alone, apartment seeds 1-20, mean 0.389 -> 0.064 m (docs/front-end-accuracy.md, "A lane
+  // with little hold along it"). 0 (or no acceleration limit, max_acceleration_mps2 0): never.
   float weak_direction_information = 0.1f;
   // Without wheels, while the heading sensor (a gyro, heading-only ticks) measures a turn faster
   // than FrontEnd::kTurnInPlaceRadS, the first registration's translation prior is as firm as the
