@@ -42,6 +42,7 @@ struct Options {
   double near_weight_m = -1.0;  // < 0: a vacuum lidar's (kVacuumNearWeightRangeM)
   double map_max_turn_dps = -1.0;  // < 0: the lidar model's (ApplyLidarModel)
   double max_accel_mps2 = -1.0;    // < 0: the configuration's (FrontEndConfig::max_acceleration_mps2)
+  double weak_hold = -1.0;          // < 0: the configuration's (FrontEndConfig::weak_direction_information)
   double smoothing_gap_beams = -1.0;  // < 0: the lidar model's (ApplyLidarModel)
   double start_heading_window_s = -1.0;  // < 0: the configuration's
   std::string load_map;
@@ -169,6 +170,7 @@ void AddMapperInputs(const dpcr::MapperConfig& config, nlohmann::json* input) {
   (*input)["near_weight_range_m"] = config.lidar.near_weight_range_m;
   (*input)["map_max_turn_rate_dps"] = config.lidar.map_max_turn_rate_rad_s * 180.0 / M_PI;
   (*input)["max_acceleration_mps2"] = config.front_end.max_acceleration_mps2;
+  (*input)["weak_direction_information"] = config.front_end.weak_direction_information;
 }
 
 // What to simulate: the options' seed, length, lidar (and its motor), spins, kidnaps and people.
@@ -209,6 +211,7 @@ dpcr::MapperConfig MapperConfigFor(const Options& opt, const dpcr::sim::SimConfi
   if (opt.near_weight_m >= 0.0) config.lidar.near_weight_range_m = static_cast<float>(opt.near_weight_m);
   if (opt.map_max_turn_dps >= 0.0) config.lidar.map_max_turn_rate_rad_s = static_cast<float>(opt.map_max_turn_dps * M_PI / 180.0);
   if (opt.max_accel_mps2 >= 0.0) config.front_end.max_acceleration_mps2 = static_cast<float>(opt.max_accel_mps2);
+  if (opt.weak_hold >= 0.0) config.front_end.weak_direction_information = static_cast<float>(opt.weak_hold);
   if (opt.smoothing_gap_beams >= 0.0) config.lidar.smoothing_max_gap_beams = static_cast<float>(opt.smoothing_gap_beams);
   if (opt.start_heading_window_s >= 0.0) config.front_end.start_heading.window_s = static_cast<float>(opt.start_heading_window_s);
   config.front_end.enable_registration = !opt.odometry_only;
@@ -451,6 +454,10 @@ void AddSensorOptions(CLI::App& app, Options& opt) {
       ->check(CLI::Range(0.0, 600.0));
   app.add_option("--max-accel", opt.max_accel_mps2, "the robot's largest acceleration (m/s^2): without wheel translation the "
                  "constant-velocity guess changes by no more (FrontEndConfig::max_acceleration_mps2, default 0.5; 0: no limit)");
+  app.add_option("--weak-hold", opt.weak_hold, "without wheel translation, a first registration keeps near the constant-velocity "
+                 "guess along directions whose information per inlier is below this (FrontEndConfig::weak_direction_information, "
+                 "default 0.1; 0: never)")
+      ->check(CLI::Range(0.0, 1000.0));
   app.add_option("--map-max-turn", opt.map_max_turn_dps, "scans taken turning faster than this go into the submap but not the "
                  "regional maps (deg/s; LidarConfig::map_max_turn_rate_rad_s, default: ld06 60, xv11 0; 0: every scan)")
       ->check(CLI::Range(0.0, 5000.0));
