@@ -15,9 +15,9 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <cmath>
 
 #include "core/geometry/pose2.hpp"
+#include "core/geometry/symmetric_eigen2.hpp"
 
 namespace dpcr {
 
@@ -28,30 +28,12 @@ namespace dpcr {
 inline bool HoldWeakDirections(const Eigen::Matrix3f& hessian, int inliers, const Pose2& predicted, float min_information,
                                float max_deviation_m, Pose2* registered) {
   if (inliers <= 0 || !(min_information > 0.0f) || !(max_deviation_m >= 0.0f)) return false;
-  const float a = hessian(0, 0), b = hessian(0, 1), d = hessian(1, 1);
-  const float half_gap = std::sqrt(0.25f * (a - d) * (a - d) + b * b);
-  const float lambda_min = 0.5f * (a + d) - half_gap, lambda_max = 0.5f * (a + d) + half_gap;
-  const float n = static_cast<float>(inliers);
-  // (b, l - a) and (l - d, b) both solve (H - l I) v = 0; the longer one is the stabler (with
-  // b = 0 one of them vanishes). Both vanish only for an isotropic block: any axis will do.
-  float ex = b, ey = lambda_min - a;
-  const float fx = lambda_min - d, fy = b;
-  if (fx * fx + fy * fy > ex * ex + ey * ey) {
-    ex = fx;
-    ey = fy;
-  }
-  const float norm = std::sqrt(ex * ex + ey * ey);
-  if (norm > 0.0f) {
-    ex /= norm;
-    ey /= norm;
-  } else {
-    ex = 1.0f;
-    ey = 0.0f;
-  }
+  const SymmetricEigen2 eigen = EigenOfSymmetric2(hessian(0, 0), hessian(0, 1), hessian(1, 1));
+  const float ex = eigen.minor.x, ey = eigen.minor.y, n = static_cast<float>(inliers);
   const float dx = registered->x - predicted.x, dy = registered->y - predicted.y;
   // Components along the weak direction (e) and the one across it (-ey, ex).
   const float along[2] = {dx * ex + dy * ey, -dx * ey + dy * ex};
-  const float information[2] = {lambda_min / n, lambda_max / n};
+  const float information[2] = {eigen.lambda_min / n, eigen.lambda_max / n};
   float kept[2] = {along[0], along[1]};
   bool moved = false;
   for (int i = 0; i < 2; ++i) {

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/geometry/symmetric_eigen2.hpp"
+
 namespace dpcr {
 namespace {
 
@@ -47,15 +49,10 @@ LineFit FitLine(const Point2* p) {
   LineFit f;
   f.centroid = Point2{o.x + sx * inv, o.y + sy * inv};
   const float a = sxx - sx * sx * inv, b = sxy - sx * sy * inv, c = syy - sy * sy * inv;
-  // Smallest eigenvalue of [a b; b c] and its eigenvector (the better conditioned of two forms).
-  const float half_diff = 0.5f * (a - c);
-  const float lambda = 0.5f * (a + c) - std::sqrt(half_diff * half_diff + b * b);
-  const Point2 v1{b, lambda - a}, v2{lambda - c, b};
-  const float n1 = v1.x * v1.x + v1.y * v1.y, n2 = v2.x * v2.x + v2.y * v2.y;
-  const Point2 v = n1 >= n2 ? v1 : v2;
-  const float norm = std::sqrt(n1 >= n2 ? n1 : n2);
-  f.normal = norm > 0.0f ? Point2{v.x / norm, v.y / norm} : Point2{1.0f, 0.0f};
-  f.rms = std::sqrt(std::fmax(lambda, 0.0f) * inv);
+  // The normal: the eigenvector of the smallest eigenvalue of [a b; b c].
+  const SymmetricEigen2 e = EigenOfSymmetric2(a, b, c);
+  f.normal = e.minor;
+  f.rms = std::sqrt(std::fmax(e.lambda_min, 0.0f) * inv);
   return f;
 }
 
