@@ -174,6 +174,7 @@ bool BackEndOk(const BackEndConfig& b) {
                      In(b.match_grid_coarsen, 2, 16) && SearchOk(b.search) &&
                      AboveUpTo(b.large_closure_max_residual_m, 0.0f, 1.0f) &&
                      In(b.unfollowed_closure_min_score, 0.0f, 1.0f) && In(b.closure_prior_info, 0.0f, kMaxInformation) &&
+                     In(b.ridge_information, 0.0f, 1.0f) && In(b.ridge_fit_tolerance, 0.0f, 1.0f) &&
                      In(b.confirm_second_ratio, 0.0f, 1.0f) && In(b.confirm_guess_window_m, 0.0f, kMaxDistanceM);
   return matching && information && loops;
 }

@@ -287,7 +287,7 @@ struct FrontEndConfig {
   bool degenerate_guess_forward = true;
   // Without wheels, an accepted first registration keeps within max_acceleration_mps2 x interval^2
   // of the constant velocity's guess along each direction whose information per inlier (the xy
-  // block of its Hessian) is below this (core/front_end/weak_direction_hold.hpp): there the answer
+  // block of its Hessian) is below this (core/registration/weak_direction_hold.hpp): there the answer
   // is the pull of a few far returns, and taken whole it slowed the guess until the estimate
   // stood in a lane while the robot drove on. Well-fixed registrations carry 0.12-0.22 on the
   // apartment's XV-11 scans; weak ones 0-0.07. XV-11, runs over 0.2 m: gyro alone, half the

@@ -93,7 +93,7 @@ void ForEachField(M& m, dpcr::MapperConfig& c) {
       m(b.loop_min_path_m), m(b.loop_retry_scans), m(b.loop_retry_path_m), m(b.search_base_m), m(b.search_per_metre_m),
       m(b.search_max_m), m(b.search_base_rad), m(b.search_per_metre_rad), m(b.search_max_rad), m(b.search_points),
       m(b.search_evaluations_per_step), m(b.match_grid_coarsen), m(b.large_closure_max_residual_m), m(b.closure_prior_info),
-      m(b.unfollowed_closure_min_score), m(b.confirm_second_ratio), m(b.confirm_guess_window_m);
+      m(b.ridge_information), m(b.ridge_fit_tolerance), m(b.unfollowed_closure_min_score), m(b.confirm_second_ratio), m(b.confirm_guess_window_m);
   m(b.search.min_angle_step_rad), m(b.search.max_angle_step_rad), m(b.search.min_score), m(b.search.max_second_ratio),
       m(b.search.peak_separation_m), m(b.search.peak_separation_rad);
   Plicp(m, b.registration);

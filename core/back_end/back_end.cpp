@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/back_end/closure_refinement.hpp"
 #include "core/back_end/region_cloud.hpp"
 #include "core/base/assert.hpp"
 #include "core/registration/pivot_frame.hpp"
@@ -231,11 +232,12 @@ LoopClosureResult BackEnd::FinishLoopClosure(Span<RegionalMap> regions, Span<con
   // guess, which may still be within PLICP's basin) along.
   const Pose2 moved = search_submap_world_.Inverse() * submap_world;
   const Pose2 start = (found.verdict == Status::kOk ? found.pose : trace_.guess) * moved;
-  // Refined by PLICP against the map's lines.
+  // Refined by PLICP against the map's lines; along a ridge, from the guess (closure_refinement.hpp).
   BuildReference(map);
-  const PosePrior prior{start, config_->closure_prior_info, config_->closure_prior_info};
-  const RegistrationResult r = RegisterImproved(*s_.reference, cloud, start, config_->closure_prior_info > 0.0f ? &prior : nullptr,
-                                                config_->closure_registration, s_.correspondences);
+  const ClosureRefinement refined = RefineClosure(*s_.reference, cloud, start, trace_.guess * moved,
+                                                  found.verdict == Status::kOk, *config_, s_.correspondences);
+  const RegistrationResult& r = refined.result;
+  if (refined.guess_on_ridge) ++counters_.loop_closures_ridge_from_guess;
   trace_.refinement = r.verdict;
   trace_.inlier_ratio = r.inlier_ratio;
   trace_.mean_residual_m = r.mean_residual_m;

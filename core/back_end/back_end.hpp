@@ -39,6 +39,7 @@ struct BackEndCounters {
   std::uint32_t loop_closures_rejected = 0;  // search weak or ambiguous, PLICP refused, or the graph disagreed
   std::uint32_t loop_closures_inconsistent = 0;  // of those: refused by the graph
   std::uint32_t loop_closures_unconfirmed = 0;   // of those: waiting for a search to agree (closure_confirmation.hpp)
+  std::uint32_t loop_closures_ridge_from_guess = 0;  // searches refined from the guess along a ridge (closure_refinement.hpp)
   std::uint32_t edges_dropped_full = 0;
   std::uint32_t jobs_dropped_full = 0;
   std::uint32_t downweighted_edges = 0;  // after the last optimisation

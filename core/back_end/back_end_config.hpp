@@ -78,6 +78,14 @@ struct BackEndConfig {
   // 0.46 m). The edge's information is the points' Hessian alone, so that direction stays weak in
   // the graph. Intel over ten range limits: mean 0.146 -> 0.071 m (docs/back-end.md).
   float closure_prior_info = 10.0f;
+  // A search's answer along a ridge (closure_refinement.hpp): a direction where the refined fit
+  // has less information per inlier than this (the xy block of the points' Hessian, whose
+  // eigenvalues per inlier run from 0, nothing fixes it, to 1, every normal along it) is refined
+  // again from the front end's guess along it, and that fit is taken if it is as good as the
+  // search's, to within ridge_fit_tolerance of its mean residual and of its inliers. Intel's
+  // closure that had slid 0.19 m along a corridor: 0.007 per inlier. 0: never.
+  float ridge_information = 0.1f;
+  float ridge_fit_tolerance = 0.05f;
   // The mean residual a closure may have when it moves the graph by more than the search's base
   // window (search_base_m, search_base_rad): a first registration's bound. (Apartment seed 16 with
   // calibrated odometry: a look-alike one doorway over, 0.98 m from the graph, fitted at 5.9 cm

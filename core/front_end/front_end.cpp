@@ -7,7 +7,7 @@
 #include "core/front_end/forward_step.hpp"
 #include "core/front_end/reference_for_noise.hpp"
 #include "core/front_end/return_share.hpp"
-#include "core/front_end/weak_direction_hold.hpp"
+#include "core/registration/weak_direction_hold.hpp"
 #include "core/geometry/wall_direction.hpp"
 #include "core/grid/ray_caster.hpp"
 #include "core/registration/pivot_frame.hpp"

@@ -1,6 +1,6 @@
 // The eigenvalues of a symmetric 2x2 matrix [a b; b c] in closed form, and the unit eigenvector of
 // the smaller one: a line fit's normal (return_smoothing.cpp), a registration's least-fixed
-// direction (core/front_end/weak_direction_hold.hpp).
+// direction (core/registration/weak_direction_hold.hpp).
 #pragma once
 
 #include <cmath>

@@ -180,6 +180,7 @@ nlohmann::json MapperMetrics(const MapperType& mapper) {
                   {"loop_closures_rejected", b.loop_closures_rejected},
                   {"loop_closures_inconsistent", b.loop_closures_inconsistent},
                   {"loop_closures_unconfirmed", b.loop_closures_unconfirmed},
+                  {"loop_closures_ridge_from_guess", b.loop_closures_ridge_from_guess},
                   {"downweighted_edges", b.downweighted_edges},
                   {"edges_dropped_full", b.edges_dropped_full},
                   {"jobs_dropped_full", b.jobs_dropped_full}};

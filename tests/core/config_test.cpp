@@ -228,6 +228,8 @@ std::vector<BadField> BadFields() {
       INT_FIELD(back_end.match_grid_coarsen, (std::vector<double>{0.0, -1.0, 1.0, 1e9})),
       FLOAT_FIELD(back_end.large_closure_max_residual_m, kPositive),
       FLOAT_FIELD(back_end.closure_prior_info, kNonNegative),
+      FLOAT_FIELD(back_end.ridge_information, kRatio),
+      FLOAT_FIELD(back_end.ridge_fit_tolerance, kRatio),
       FLOAT_FIELD(back_end.unfollowed_closure_min_score, kRatio),
       FLOAT_FIELD(back_end.confirm_second_ratio, kRatio),
       FLOAT_FIELD(back_end.confirm_guess_window_m, kNonNegative),

@@ -1,6 +1,6 @@
 // Along a direction the walls barely fix, a registration without wheels keeps near the constant
-// velocity's guess (core/front_end/weak_direction_hold.hpp).
-#include "core/front_end/weak_direction_hold.hpp"
+// velocity's guess (core/registration/weak_direction_hold.hpp).
+#include "core/registration/weak_direction_hold.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -12,6 +12,8 @@
 // the position change a full acceleration makes from the guess, which carries the last step's
 // own error). Across it, and along any direction the walls do fix, the registration's answer is
 // kept as it is.
+// The back end uses the same split to start a loop closure's second refinement at the guess along
+// a ridge the search could not resolve (core/back_end/closure_refinement.hpp).
 #pragma once
 
 #include <Eigen/Core>
