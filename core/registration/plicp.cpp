@@ -260,13 +260,16 @@ struct FindLineFeature {
     if (j == kNoCell) return false;
     const ObstacleCell& cell = ref.cell(j);
     out->ref = j;
-    out->q = ref.ObstaclePoint(j);
     if (cell.line != kNoLine) {  // the paper's term: distance to the owning line feature
+      // No q: a line's residual never reads it, and most correspondences are lines.
       const LineFeature& l = ref.line(cell.line);
       out->normal = l.normal;
       out->offset = l.offset;
       out->weight = 1.0f;
-    } else if (cell.nx != 0 || cell.ny != 0) {  // clutter with a direction: its local line
+      return true;
+    }
+    out->q = ref.ObstaclePoint(j);
+    if (cell.nx != 0 || cell.ny != 0) {  // clutter with a direction: its local line
       const float nx = static_cast<float>(cell.nx), ny = static_cast<float>(cell.ny);
       const float inv = 1.0f / std::sqrt(nx * nx + ny * ny);
       out->normal = Point2{nx * inv, ny * inv};
