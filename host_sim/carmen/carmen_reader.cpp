@@ -20,6 +20,21 @@ bool IsSpace(char c) {
   return u <= ' ' && (u == ' ' || static_cast<unsigned char>(u - '\t') <= static_cast<unsigned char>('\r' - '\t'));
 }
 
+bool IsDigit(char c) { return static_cast<unsigned char>(c - '0') <= 9u; }
+
+// A range in metres to the centimetre with one or two whole digits ("1.23", "12.34"): nine words in
+// ten of a laser log. Read at once: where the word ends and its value in centimetres, or nullptr.
+const char* ReadCentimetres(const char* p, const char* last, std::uint64_t* centimetres) {
+  if (last - p < 4 || !IsDigit(p[0])) return nullptr;
+  std::uint64_t whole = static_cast<unsigned char>(p[0] - '0');
+  const char* q = p + 1;
+  if (IsDigit(*q)) whole = whole * 10u + static_cast<unsigned char>(*q++ - '0');
+  if (last - q < 3 || q[0] != '.' || !IsDigit(q[1]) || !IsDigit(q[2])) return nullptr;
+  if (q + 3 < last && !IsSpace(q[3])) return nullptr;
+  *centimetres = whole * 100u + static_cast<unsigned char>(q[1] - '0') * 10u + static_cast<unsigned char>(q[2] - '0');
+  return q + 3;
+}
+
 // Clinger's fast path: a plain decimal of at most 15 digits ("1.23", "-0.004", "17") is an exact
 // integer over an exact power of ten, and one IEEE division rounds the quotient correctly: the
 // double strtod and from_chars give, at a fraction of their cost (parsing was ~10 % of a replay).
@@ -30,6 +45,11 @@ const char* ReadShortDecimal(const char* p, const char* last, double* value) {
   if (p < last && (*p == '-' || *p == '+')) ++p;
   static constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
   std::uint64_t mantissa = 0;
+  if (const char* const end = ReadCentimetres(p, last, &mantissa)) {  // the same division as below
+    const double v = static_cast<double>(mantissa) / kPow10[2];
+    *value = negative ? -v : v;
+    return end;
+  }
   const char* const first_digit = p;
   const char* point = nullptr;
   for (; p < last; ++p) {
