@@ -87,10 +87,15 @@ float TrimThreshold(const RegistrationReference& ref, Span<const Point2> target,
 
 // A target point's share by its distance from the target frame's origin (PlicpConfig::
 // near_weight_range_m): 1 beyond `range_m` (or with range_m 0), falling linearly to 0 at the origin.
-inline float NearWeight(Point2 p, float range_m) {
-  const float d2 = p.x * p.x + p.y * p.y;
-  return d2 >= range_m * range_m ? 1.0f : std::sqrt(d2) / range_m;
-}
+struct NearWeight {
+  explicit NearWeight(float r) : range_m(r), range2(r * r) {}  // the square once per pass, not per point
+  float operator()(Point2 p) const {
+    const float d2 = p.x * p.x + p.y * p.y;
+    return d2 >= range2 ? 1.0f : std::sqrt(d2) / range_m;
+  }
+  float range_m;
+  float range2;
+};
 
 // What pass 2 found at one pose.
 struct Linearisation {
@@ -113,6 +118,7 @@ Linearisation Linearise(const RegistrationReference& ref, Span<const Point2> tar
   std::uint32_t hash = 0;
   int inliers = 0;
   float residual_sum = 0.0f;
+  const NearWeight near_weight(config.near_weight_range_m);
   for (std::size_t i = 0; i < target.size(); ++i) {
     Correspondence corr;
     const Point2 w = to_world(target[i]);
@@ -126,7 +132,7 @@ Linearisation Linearise(const RegistrationReference& ref, Span<const Point2> tar
     const float r_abs = Residual(corr, w);
     if (r_abs > threshold || r_abs > config.gate_m) continue;
     const float huber = r_abs <= config.huber_m ? 1.0f : config.huber_m / r_abs;
-    const float weight = corr.weight * huber * NearWeight(target[i], config.near_weight_range_m);
+    const float weight = corr.weight * huber * near_weight(target[i]);
     const float rx = w.x - pose.x, ry = w.y - pose.y;  // d(w)/dθ = (-ry, rx)
     ++inliers;
     residual_sum += r_abs;
