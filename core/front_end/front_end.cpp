@@ -642,7 +642,8 @@ void FrontEnd::RefitSubmapLines() {
   for (int i = 0; i < s_.submap->size(); ++i) {
     const SubmapScanView scan = s_.submap->scan(i);
     const PointTransform to_submap(scan.pose);
-    for (const Point2& p : scan.points) ref.AddRefitPoint(to_submap(p), config_.front_end.submap_refit_gate_m);
+    ref.AddRefitPoints(Span<const Point2>(scan.points.data(), scan.points.size()), to_submap,
+                       config_.front_end.submap_refit_gate_m);
   }
   (void)ref.EndPointRefit(config_.front_end.submap_refit_min_points);
 }

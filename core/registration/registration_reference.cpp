@@ -296,6 +296,10 @@ void RegistrationReference::AddRefitPoint(Point2 p, float gate_m) {
   s.n += 1.0f, s.u += u, s.v += v, s.uu += u * u, s.uv += u * v, s.vv += v * v;
 }
 
+void RegistrationReference::AddRefitPoints(Span<const Point2> points, const PointTransform& to_grid, float gate_m) {
+  for (const Point2& p : points) AddRefitPoint(to_grid(p), gate_m);
+}
+
 int RegistrationReference::EndPointRefit(int min_points) {
   int refitted = 0;
   for (std::size_t i = 0; i < line_count_; ++i) {

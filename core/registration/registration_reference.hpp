@@ -70,6 +70,8 @@ class RegistrationReference {
   // Lines with fewer than `min_points` keep their cell fit. Only for storage with point-refit sums.
   void BeginPointRefit();
   void AddRefitPoint(Point2 p, float gate_m);
+  // AddRefitPoint for each of a scan's points placed by `to_grid`: one call a scan, not one a point.
+  void AddRefitPoints(Span<const Point2> points, const PointTransform& to_grid, float gate_m);
   int EndPointRefit(int min_points);
 
   // Index of the obstacle cell nearest to world point p (among equally near ones the heaviest,
