@@ -85,8 +85,6 @@ void RegistrationReference::BeginBuild(CellBox window, float resolution_m) {
   h_ = window.height() < max_h_ ? window.height() : max_h_;
   w_ = w_ > 0 ? w_ : 0;
   h_ = h_ > 0 ? h_ : 0;
-  w_float_ = static_cast<float>(w_);
-  h_float_ = static_cast<float>(h_);
   res_ = resolution_m;
   inv_res_ = 1.0f / res_;
   origin_ = Point2{static_cast<float>(window.min.x) * res_, static_cast<float>(window.min.y) * res_};

@@ -79,7 +79,7 @@ class RegistrationReference {
   // ones read the cached answer.
   std::uint16_t Nearest(Point2 p) const {
     const float fx = (p.x - origin_.x) * inv_res_, fy = (p.y - origin_.y) * inv_res_;
-    if (!(fx >= 0.0f && fy >= 0.0f && fx < w_float_ && fy < h_float_)) return kNoCell;
+    if (!(fx >= 0.0f && fy >= 0.0f && fx < static_cast<float>(w_) && fy < static_cast<float>(h_))) return kNoCell;
     const int x = static_cast<int>(fx), y = static_cast<int>(fy);
     const std::uint16_t k = nearest_[static_cast<std::size_t>(y * w_ + x)];
     if (k < kNoneNear) return k;
@@ -155,9 +155,6 @@ class RegistrationReference {
   Span<RefitSums> refit_;
   int max_w_, max_h_;
   int w_ = 0, h_ = 0;
-  // w_, h_ as floats for Nearest's bounds test: a query would convert them again (Search's call
-  // between two queries keeps the compiler from keeping them in registers).
-  float w_float_ = 0.0f, h_float_ = 0.0f;
   int blocks_x_ = 0;
   std::int32_t bound2_ = 0;  // squared distance bound, cells^2
   int reach_ = 0;            // the largest per-axis offset within the bound, cells
