@@ -11,12 +11,11 @@
 
 using dpcr::Point2;
 using dpcr::Pose2;
+using dpcr_test::C;
 
 namespace {
 
 constexpr float kDeg = dpcr::kPi / 180.0f;
-
-float C(int k) { return 0.05f * static_cast<float>(k) + 0.025f; }
 
 // An L-shaped room with a cupboard: lines in every direction.
 std::vector<dpcr_test::Segment> Room() {

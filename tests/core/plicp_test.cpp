@@ -14,11 +14,10 @@ using dpcr::Point2;
 using dpcr::Pose2;
 using dpcr_test::GridFixture;
 using dpcr_test::Segment;
+using dpcr_test::C;
+using dpcr_test::SpanOf;
 
 namespace {
-
-// Cell-centre coordinates (k * 5 cm + 2.5 cm): walls drawn there give exact line features.
-float C(int k) { return 0.05f * static_cast<float>(k) + 0.025f; }
 
 std::vector<Segment> LRoom() {
   const Point2 p0{C(20), C(20)}, p1{C(180), C(20)}, p2{C(180), C(100)}, p3{C(110), C(100)}, p4{C(110), C(180)},
@@ -38,8 +37,6 @@ void InsertNoisyScans(GridFixture& f, const std::vector<Segment>& walls) {
                           static_cast<std::uint32_t>(k + 1));
   }
 }
-
-dpcr::Span<const Point2> SpanOf(const std::vector<Point2>& v) { return dpcr::Span<const Point2>(v.data(), v.size()); }
 
 float PosErr(Pose2 a, Pose2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
 float AngErr(Pose2 a, Pose2 b) { return std::fabs(dpcr::NormalizeAngle(a.theta - b.theta)); }

@@ -22,6 +22,11 @@ struct Segment {
 
 using Reference = dpcr::RegistrationReferenceStorage<256, 256, 4096, 512>;
 
+// Cell-centre coordinates (k * 5 cm + 2.5 cm): walls drawn there give exact line features.
+inline float C(int k) { return 0.05f * static_cast<float>(k) + 0.025f; }
+
+inline dpcr::Span<const Point2> SpanOf(const std::vector<Point2>& v) { return dpcr::Span<const Point2>(v.data(), v.size()); }
+
 struct GridFixture {
   std::unique_ptr<dpcr::TilePoolStorage<64>> pool = std::make_unique<dpcr::TilePoolStorage<64>>();
   std::unique_ptr<dpcr::TiledGridStorage<8, 8>> grid = std::make_unique<dpcr::TiledGridStorage<8, 8>>(pool.get());

@@ -16,12 +16,12 @@ using dpcr::Point2;
 using dpcr::Pose2;
 using dpcr_test::GridFixture;
 using dpcr_test::Segment;
+using dpcr_test::C;
+using dpcr_test::SpanOf;
 
 namespace {
 
 constexpr float kDeg = dpcr::kPi / 180.0f;
-
-float C(int k) { return 0.05f * static_cast<float>(k) + 0.025f; }
 
 // An L-shaped room with a cupboard (no symmetry a rotation could alias).
 std::vector<Segment> LRoom() {
@@ -52,8 +52,6 @@ struct Scene {
     grid->Build(*f.ref, dpcr::PoseSearchConfig{});
   }
 };
-
-dpcr::Span<const Point2> SpanOf(const std::vector<Point2>& v) { return dpcr::Span<const Point2>(v.data(), v.size()); }
 
 }  // namespace
 
